@@ -1,0 +1,28 @@
+// build/movseg: segment moving objects, make synthetic test video, evaluate and benchmark.
+#include <exception>
+#include <iostream>
+
+#include <opencv2/core/utility.hpp>
+
+#include "commands.h"
+
+int main(int argc, char** argv) {
+  cv::setNumThreads(1);  // per-frame work is small; one core per stream is the design point
+  CLI::App app{"movseg: moving object segmentation for freely moving cameras"};
+  app.require_subcommand(1);
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return std::string("movseg: error: ") + e.what() + "\n";
+  });
+  movseg::cli::addSegmentCommand(app);
+  movseg::cli::addSynthCommand(app);
+  movseg::cli::addDemoCommand(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    std::cerr << "movseg: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,265 @@
+#include "segment_run.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
+
+#include "io/atomic_write.h"
+#include "io/frame_source.h"
+#include "io/overlay.h"
+#include "methods/method.h"
+#include "progress.h"
+
+namespace movseg::cli {
+namespace fs = std::filesystem;
+namespace {
+
+std::atomic<bool> g_stop{false};
+extern "C" void onSignal(int) { g_stop = true; }
+
+// SIGINT / SIGTERM end the run after the current frame; what was written stays complete.
+class StopOnSignal {
+ public:
+  StopOnSignal() {
+    g_stop = false;
+    previous_int_ = std::signal(SIGINT, onSignal);
+    previous_term_ = std::signal(SIGTERM, onSignal);
+  }
+  ~StopOnSignal() {
+    std::signal(SIGINT, previous_int_);
+    std::signal(SIGTERM, previous_term_);
+  }
+
+ private:
+  void (*previous_int_)(int);
+  void (*previous_term_)(int);
+};
+
+void makeFolder(const std::string& path) {
+  std::error_code error;
+  fs::create_directories(path, error);
+  if (error || !fs::is_directory(path)) {
+    throw std::runtime_error("cannot create output folder '" + path + "'" +
+                             (error ? ": " + error.message() : ""));
+  }
+}
+
+std::string frameName(int index) {
+  char name[32];
+  std::snprintf(name, sizeof name, "%05d.png", index);
+  return name;
+}
+
+nlohmann::json modelRows(const Diagnostics& d) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (int r = 0; r < (d.model_is_affine ? 2 : 3); ++r) {
+    rows.push_back({d.model(r, 0), d.model(r, 1), d.model(r, 2)});
+  }
+  return rows;
+}
+
+nlohmann::json statsLine(int index, const Diagnostics& d) {
+  return {
+      {"frame", index},
+      {"model", modelRows(d)},
+      {"features", d.features},
+      {"tracks", d.tracks},
+      {"matches", d.matches},
+      {"background", d.background_matches},
+      {"foreground", d.foreground_matches},
+      {"outer_iterations", d.outer_iterations},
+      {"seeds", {{"foreground", d.foreground_seeds}, {"background", d.background_seeds},
+                 {"unknown", d.unknown_seeds}}},
+      {"lambda", d.lambda},
+      {"flags", {{"first_frame", d.first_frame}, {"reset", d.reset},
+                 {"motion_fallback", d.motion_fallback},
+                 {"no_background_seeds", d.no_background_seeds}}},
+      {"ms", {{"prepare", d.timings.prepare_ms}, {"motion", d.timings.motion_ms},
+              {"classify", d.timings.classify_ms}, {"cut", d.timings.cut_ms},
+              {"total", d.timings.total_ms}}},
+  };
+}
+
+// JSON Lines written to FILE.part and renamed to FILE when the run ends (also on a signal).
+class StatsWriter {
+ public:
+  explicit StatsWriter(std::string path) : path_(std::move(path)) {
+    if (path_.empty()) return;
+    out_.open(path_ + ".part", std::ios::trunc);
+    if (!out_) throw std::runtime_error("cannot write stats file '" + path_ + "'");
+  }
+  void write(const nlohmann::json& line) {
+    if (path_.empty()) return;
+    out_ << line.dump() << '\n';
+  }
+  void close() {
+    if (path_.empty()) return;
+    out_.close();
+    std::error_code error;
+    fs::rename(path_ + ".part", path_, error);
+    if (error) throw std::runtime_error("cannot write stats file '" + path_ + "'");
+  }
+
+ private:
+  std::string path_;
+  std::ofstream out_;
+};
+
+bool isVideoPath(const std::string& path) {
+  const std::string ext = fs::path(path).extension().string();
+  return ext == ".mp4" || ext == ".avi" || ext == ".mkv" || ext == ".mov";
+}
+
+// Overlay frames as PNGs in a folder, or as one video written to a temporary name and renamed
+// when complete.
+class OverlayWriter {
+ public:
+  explicit OverlayWriter(std::string target) : target_(std::move(target)) {
+    if (target_.empty()) return;
+    if (isVideoPath(target_)) {
+      const fs::path p(target_);
+      temporary_ = (p.parent_path() / (p.stem().string() + ".part" + p.extension().string())).string();
+    } else {
+      makeFolder(target_);
+    }
+  }
+  void write(int index, const cv::Mat& picture) {
+    if (target_.empty()) return;
+    if (temporary_.empty()) {
+      writeImageAtomic((fs::path(target_) / frameName(index)).string(), picture);
+      return;
+    }
+    if (!video_.isOpened()) {
+      size_ = picture.size();
+      const int fourcc = fs::path(target_).extension() == ".avi"
+                             ? cv::VideoWriter::fourcc('M', 'J', 'P', 'G')
+                             : cv::VideoWriter::fourcc('m', 'p', '4', 'v');
+      if (!video_.open(temporary_, cv::CAP_FFMPEG, fourcc, 25.0, size_)) {
+        throw std::runtime_error("cannot write overlay video '" + target_ + "'");
+      }
+    }
+    if (picture.size() == size_) {
+      video_.write(picture);
+    } else {
+      cv::Mat resized;
+      cv::resize(picture, resized, size_);
+      video_.write(resized);
+    }
+  }
+  void close() {
+    if (!video_.isOpened()) return;
+    video_.release();
+    std::error_code error;
+    fs::rename(temporary_, target_, error);
+    if (error) throw std::runtime_error("cannot write overlay video '" + target_ + "'");
+  }
+
+ private:
+  std::string target_, temporary_;
+  cv::VideoWriter video_;
+  cv::Size size_;
+};
+
+void writeDebugPictures(const std::string& folder, int index, const Result& result) {
+  for (const auto& [name, picture] : result.debug) {
+    if (picture.empty()) continue;
+    const fs::path dir = fs::path(folder) / name;
+    makeFolder(dir.string());
+    writeImageAtomic((dir / frameName(index)).string(), picture);
+  }
+}
+
+}  // namespace
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0;
+  const auto mid = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), mid, values.end());
+  return *mid;
+}
+
+SegmentSummary runSegmentation(const SegmentOptions& options) {
+  Params params = options.params;
+  params.debug_images = params.debug_images || options.debug;
+  std::unique_ptr<Method> method = makeMethod(options.method, params);
+  std::unique_ptr<FrameSource> source = FrameSource::open(options.input);
+  if (!options.output_dir.empty()) makeFolder(options.output_dir);
+  const std::string debug_dir = (fs::path(options.output_dir) / "debug").string();
+  StatsWriter stats(options.stats_file);
+  OverlayWriter overlay(options.overlay);
+  StopOnSignal stop_on_signal;
+
+  SegmentSummary summary;
+  int total = source->frameCount();
+  if (options.max_frames >= 0 && (total < 0 || total > options.max_frames)) total = options.max_frames;
+  Progress progress("segment", total, options.quiet);
+  const auto start = std::chrono::steady_clock::now();
+  cv::Mat frame;
+  while (options.max_frames < 0 || summary.frames < options.max_frames) {
+    if (g_stop) {
+      summary.interrupted = true;
+      break;
+    }
+    if (!source->read(&frame)) break;
+    const int index = summary.frames;
+    Result result;
+    try {
+      result = method->process(frame);
+    } catch (const std::invalid_argument& e) {
+      throw std::runtime_error(source->describe() + ": " + e.what());
+    }
+    summary.frame_ms.push_back(result.diagnostics.timings.total_ms);
+    summary.resets += result.diagnostics.reset;
+    summary.motion_fallbacks += result.diagnostics.motion_fallback;
+    if (!options.output_dir.empty()) {
+      writeImageAtomic((fs::path(options.output_dir) / frameName(index)).string(), result.mask);
+      if (options.debug) writeDebugPictures(debug_dir, index, result);
+    }
+    stats.write(statsLine(index, result.diagnostics));
+    if (!options.overlay.empty()) {
+      const double ms = result.diagnostics.timings.total_ms;
+      char hud[64];
+      std::snprintf(hud, sizeof hud, "frame %d  %.0f fps", index, ms > 0 ? 1000.0 / ms : 0.0);
+      overlay.write(index, drawOverlay(frame, result, hud));
+    }
+    ++summary.frames;
+    progress.update(summary.frames);
+  }
+  progress.finish();
+  summary.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats.close();
+  overlay.close();
+  if (summary.frames == 0 && !summary.interrupted) {
+    throw std::runtime_error("no frames in '" + options.input + "'");
+  }
+  return summary;
+}
+
+std::string describeSummary(const SegmentSummary& summary) {
+  const double ms = median(summary.frame_ms);
+  char line[160];
+  std::snprintf(line, sizeof line, "%d frames in %.2f s (%.1f fps overall, median %.2f ms/frame)",
+                summary.frames, summary.seconds,
+                summary.seconds > 0 ? summary.frames / summary.seconds : 0.0, ms);
+  std::string text = line;
+  if (summary.resets > 0) text += ", " + std::to_string(summary.resets) + " size resets";
+  if (summary.motion_fallbacks > 0) {
+    text += ", " + std::to_string(summary.motion_fallbacks) + " alignment fallbacks";
+  }
+  return text;
+}
+
+}  // namespace movseg::cli

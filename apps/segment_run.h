@@ -1,0 +1,40 @@
+// The loop shared by `segment`, `demo` and `bench`: frames in, masks and diagnostics out.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "movseg/params.h"
+
+namespace movseg::cli {
+
+struct SegmentOptions {
+  std::string input;
+  std::string output_dir;     // masks as 00000.png, ...; empty = do not write masks
+  std::string overlay;        // "" none; a folder, or a video file (.mp4, .avi, .mkv)
+  std::string stats_file;     // JSON Lines, one object per frame; "" none
+  bool debug = false;         // write each stage's pictures under output_dir/debug/
+  int max_frames = -1;        // < 0: all
+  std::string method = "paper";
+  Params params;
+  bool quiet = false;         // no progress, no summary line
+};
+
+struct SegmentSummary {
+  int frames = 0;
+  double seconds = 0;               // wall time of the whole run
+  std::vector<double> frame_ms;     // per-frame process() time
+  int resets = 0;
+  int motion_fallbacks = 0;
+  bool interrupted = false;
+};
+
+// Throws std::runtime_error with a one-line message on bad input or unwritable output.
+SegmentSummary runSegmentation(const SegmentOptions& options);
+
+// "123 frames in 1.2 s (101.3 fps, median 9.1 ms/frame)".
+std::string describeSummary(const SegmentSummary& summary);
+
+double median(std::vector<double> values);
+
+}  // namespace movseg::cli

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Installs the Debian packages movseg needs to build, test and run.
+# Idempotent: when every package is already installed it does nothing (no apt-get call at all).
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake pkg-config
+  libopencv-dev libopencv-contrib-dev   # images, video I/O, pyramids, Lucas-Kanade, MOG2
+  libcli11-dev                          # command-line parsing
+  nlohmann-json3-dev                    # --stats / --json output
+  libboost-graph-dev                    # Boykov-Kolmogorov max-flow
+  libgtest-dev libgmock-dev             # unit tests
+  libbenchmark-dev                      # bench/
+  pybind11-dev python3-dev python3-numpy python3-opencv python3-pytest  # Python module
+  clang libclang-rt-14-dev              # libFuzzer and sanitizer runtimes
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}" >&2
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

@@ -1,0 +1,28 @@
+// §3.2 feature classification: eq. (3) on the compensated difference, refined by the colour
+// GMMs of eq. (5).
+#pragma once
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "movseg/params.h"
+#include "movseg/segmenter.h"
+
+namespace movseg {
+
+// The threshold of eq. (3) for one difference image: max(lambda, lambda_noise_factor * median d).
+double chooseLambda(const cv::Mat& difference, const Params& params);
+
+// Eq. (3): foreground where d > lambda, background otherwise (d sampled at each point).
+std::vector<FeatureLabel> classifyByDifference(const cv::Mat& difference,
+                                               const std::vector<cv::Point2f>& points,
+                                               double lambda);
+
+// Eq. (5): fits a GMM to the foreground and one to the background points' colours, then marks
+// unknown every foreground point with P_f <= P_b and every background point with P_f >= P_b.
+// Does nothing when either set is empty (there is nothing to compare against).
+void refineByColour(const std::vector<cv::Vec3f>& colours, int clusters,
+                    std::vector<FeatureLabel>* labels);
+
+}  // namespace movseg

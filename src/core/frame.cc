@@ -1,0 +1,87 @@
+#include "core/frame.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include <opencv2/imgproc.hpp>
+#include <opencv2/video/tracking.hpp>
+
+#include "motion/features.h"
+
+namespace movseg {
+
+cv::Mat toBgr8(const cv::Mat& frame) {
+  if (frame.empty()) throw std::invalid_argument("empty frame");
+  cv::Mat eight;
+  switch (frame.depth()) {
+    case CV_8U: eight = frame; break;
+    case CV_8S: frame.convertTo(eight, CV_8U, 1.0, 128.0); break;
+    case CV_16U: frame.convertTo(eight, CV_8U, 1.0 / 256.0); break;
+    case CV_16S: frame.convertTo(eight, CV_8U, 1.0 / 256.0, 128.0); break;
+    case CV_32F:
+    case CV_64F: {
+      cv::Mat finite = frame.clone();
+      cv::patchNaNs(finite, 0.0);  // NaN would otherwise become an arbitrary byte
+      finite.convertTo(eight, CV_8U, 255.0);
+      break;
+    }
+    default:
+      throw std::invalid_argument("unsupported pixel depth");
+  }
+  cv::Mat bgr;
+  switch (eight.channels()) {
+    case 1: cv::cvtColor(eight, bgr, cv::COLOR_GRAY2BGR); break;
+    case 3: bgr = eight; break;
+    case 4: cv::cvtColor(eight, bgr, cv::COLOR_BGRA2BGR); break;
+    default:
+      throw std::invalid_argument("unsupported channel count " + std::to_string(eight.channels()) +
+                                  " (expected 1, 3 or 4)");
+  }
+  return bgr;
+}
+
+cv::Size scaledSize(cv::Size size, int width) {
+  if (width <= 0 || width >= size.width) return size;
+  const double scale = static_cast<double>(width) / size.width;
+  return {width, std::max(1, static_cast<int>(std::lround(size.height * scale)))};
+}
+
+namespace {
+
+cv::Mat resizedTo(const cv::Mat& image, cv::Size size) {
+  if (image.size() == size) return image;
+  cv::Mat out;
+  cv::resize(image, out, size, 0, 0, cv::INTER_AREA);
+  return out;
+}
+
+// LK needs a window's worth of pixels at the base level; smaller frames are not tracked.
+bool trackable(const cv::Mat& grey, const Params& params) {
+  return std::min(grey.cols, grey.rows) >= params.lk_window + 1;
+}
+
+}  // namespace
+
+PreparedFrame prepareFrame(const cv::Mat& bgr, const Params& params) {
+  PreparedFrame f;
+  f.bgr = bgr;
+  const cv::Size seg_size = scaledSize(bgr.size(), params.segmentation_width);
+  f.seg_bgr = resizedTo(bgr, seg_size);
+  f.seg_scale = static_cast<double>(seg_size.width) / bgr.cols;
+
+  const cv::Size align_size = scaledSize(bgr.size(), params.alignment_width);
+  const cv::Mat& align_source = align_size == seg_size ? f.seg_bgr : bgr;
+  cv::cvtColor(resizedTo(align_source, align_size), f.small_grey, cv::COLOR_BGR2GRAY);
+  f.align_scale = static_cast<double>(align_size.width) / bgr.cols;
+  // Features serve §3.2 in every mode; the pyramid only serves alignment.
+  if (!params.static_camera && trackable(f.small_grey, params)) {
+    const cv::Size window(params.lk_window, params.lk_window);
+    cv::buildOpticalFlowPyramid(f.small_grey, f.pyramid, window, params.lk_levels, true);
+  }
+  f.features = detectFeatures(f.small_grey, params);
+  return f;
+}
+
+}  // namespace movseg

@@ -1,0 +1,33 @@
+// Input normalisation and the per-frame data that the stages share.
+#pragma once
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "movseg/params.h"
+
+namespace movseg {
+
+// Converts any supported frame to 8-bit BGR: grey and BGRA are converted, 16-bit is scaled by
+// 1/256, float frames are read as [0, 1]. Throws std::invalid_argument for an empty frame or
+// an unsupported channel count.
+cv::Mat toBgr8(const cv::Mat& frame);
+
+// The size of `size` scaled to `width` (0 = unchanged), never upscaled, at least 1x1.
+cv::Size scaledSize(cv::Size size, int width);
+
+// Everything computed once per frame and reused by the pair (prev, cur) and the next pair.
+struct PreparedFrame {
+  cv::Mat bgr;                        // full resolution
+  cv::Mat seg_bgr;                    // segmentation scale (may share data with bgr)
+  cv::Mat small_grey;                 // alignment scale
+  std::vector<cv::Mat> pyramid;       // LK pyramid of small_grey (empty if too small to track)
+  std::vector<cv::Point2f> features;  // edge and corner points of small_grey
+  double align_scale = 1.0;           // small_grey = bgr scaled by this
+  double seg_scale = 1.0;             // seg_bgr = bgr scaled by this
+};
+
+PreparedFrame prepareFrame(const cv::Mat& bgr, const Params& params);
+
+}  // namespace movseg

@@ -1,0 +1,93 @@
+#include "cut/geodesic.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace movseg {
+namespace {
+
+// Step costs between each pixel and its neighbour at (dx, dy); the last column/row that has no
+// such neighbour is left at 0 and never read.
+cv::Mat stepCosts(const cv::Mat& colour, int dx, int dy, double gamma, double length) {
+  cv::Mat cost(colour.size(), CV_32F, cv::Scalar(0));
+  const float g2 = static_cast<float>(gamma * gamma), l2 = static_cast<float>(length * length);
+  for (int y = 0; y + dy < colour.rows; ++y) {
+    const auto* row = colour.ptr<cv::Vec3f>(y);
+    const auto* next = colour.ptr<cv::Vec3f>(y + dy);
+    float* out = cost.ptr<float>(y);
+    for (int x = std::max(0, -dx); x < colour.cols && x + dx < colour.cols; ++x) {
+      const cv::Vec3f d = row[x] - next[x + dx];
+      out[x] = std::sqrt(l2 + g2 * d.dot(d));
+    }
+  }
+  return cost;
+}
+
+}  // namespace
+
+GeodesicGrid::GeodesicGrid(const cv::Mat& bgr, double gamma) : size_(bgr.size()) {
+  cv::Mat colour;
+  bgr.convertTo(colour, CV_32FC3, 1.0 / 255.0);
+  right_ = stepCosts(colour, 1, 0, gamma, 1.0);
+  down_left_ = stepCosts(colour, -1, 1, gamma, std::sqrt(2.0));
+  down_ = stepCosts(colour, 0, 1, gamma, 1.0);
+  down_right_ = stepCosts(colour, 1, 1, gamma, std::sqrt(2.0));
+}
+
+cv::Mat GeodesicGrid::distanceFrom(const std::vector<cv::Point>& seeds, int sweeps) const {
+  cv::Mat distance(size_, CV_32F, cv::Scalar(std::numeric_limits<float>::infinity()));
+  if (seeds.empty()) return distance;
+  for (const cv::Point& s : seeds) distance.at<float>(s) = 0.f;
+  for (int i = 0; i < sweeps; ++i) {
+    forwardPass(distance);
+    backwardPass(distance);
+  }
+  return distance;
+}
+
+// Relaxes each pixel from its already visited neighbours: left, up-left, up, up-right.
+void GeodesicGrid::forwardPass(cv::Mat& distance) const {
+  const int w = size_.width;
+  for (int y = 0; y < size_.height; ++y) {
+    float* d = distance.ptr<float>(y);
+    const float* right = right_.ptr<float>(y);
+    for (int x = 1; x < w; ++x) d[x] = std::min(d[x], d[x - 1] + right[x - 1]);
+    if (y == 0) continue;
+    const float* up = distance.ptr<float>(y - 1);
+    const float* down = down_.ptr<float>(y - 1);
+    const float* down_left = down_left_.ptr<float>(y - 1);
+    const float* down_right = down_right_.ptr<float>(y - 1);
+    for (int x = 0; x < w; ++x) {
+      float best = std::min(d[x], up[x] + down[x]);
+      if (x > 0) best = std::min(best, up[x - 1] + down_right[x - 1]);
+      if (x + 1 < w) best = std::min(best, up[x + 1] + down_left[x + 1]);
+      d[x] = best;
+    }
+    for (int x = 1; x < w; ++x) d[x] = std::min(d[x], d[x - 1] + right[x - 1]);
+  }
+}
+
+// Relaxes each pixel from right, down-right, down, down-left.
+void GeodesicGrid::backwardPass(cv::Mat& distance) const {
+  const int w = size_.width;
+  for (int y = size_.height - 1; y >= 0; --y) {
+    float* d = distance.ptr<float>(y);
+    const float* right = right_.ptr<float>(y);
+    for (int x = w - 2; x >= 0; --x) d[x] = std::min(d[x], d[x + 1] + right[x]);
+    if (y + 1 == size_.height) continue;
+    const float* below = distance.ptr<float>(y + 1);
+    const float* down = down_.ptr<float>(y);
+    const float* down_left = down_left_.ptr<float>(y);
+    const float* down_right = down_right_.ptr<float>(y);
+    for (int x = 0; x < w; ++x) {
+      float best = std::min(d[x], below[x] + down[x]);
+      if (x + 1 < w) best = std::min(best, below[x + 1] + down_right[x]);
+      if (x > 0) best = std::min(best, below[x - 1] + down_left[x]);
+      d[x] = best;
+    }
+    for (int x = w - 2; x >= 0; --x) d[x] = std::min(d[x], d[x + 1] + right[x]);
+  }
+}
+
+}  // namespace movseg

@@ -1,0 +1,33 @@
+// §3.3 geodesic distances to the seeds (eq. 9, 10), by raster scanning (ref. [19]).
+#pragma once
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace movseg {
+
+// The 8-connected pixel grid of an image with the geodesic step cost
+//   c(p, q) = sqrt(|p - q|^2 + gamma^2 |C(p) - C(q)|^2),   colours C in [0, 1]^3,
+// precomputed once per image and shared by the foreground and background distances.
+class GeodesicGrid {
+ public:
+  GeodesicGrid(const cv::Mat& bgr, double gamma);
+
+  // Shortest-path distance from every pixel to the nearest seed (CV_32F), by `sweeps` pairs of
+  // forward and backward raster passes (two suffice unless paths wind back and forth).
+  // Without seeds every distance is +infinity.
+  cv::Mat distanceFrom(const std::vector<cv::Point>& seeds, int sweeps = 2) const;
+
+  cv::Size size() const { return size_; }
+
+ private:
+  void forwardPass(cv::Mat& distance) const;
+  void backwardPass(cv::Mat& distance) const;
+
+  cv::Size size_;
+  // Cost of the step from (x, y) to its neighbour right, down-left, down, down-right.
+  cv::Mat right_, down_left_, down_, down_right_;
+};
+
+}  // namespace movseg

@@ -1,0 +1,22 @@
+// §3.3 foreground extraction: the energy of eq. (6)-(11) minimised by max-flow.
+#pragma once
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "movseg/params.h"
+
+namespace movseg {
+
+struct CutResult {
+  cv::Mat mask;        // CV_8U 0/255
+  cv::Mat confidence;  // u(x) of eq. (10), CV_32F (for the debug picture)
+  int graph_nodes = 0; // pixels left to the max-flow after the exact reduction
+};
+
+// Segments `bgr` from foreground and background seed pixels. Needs at least one seed of each.
+CutResult geodesicGraphCut(const cv::Mat& bgr, const std::vector<cv::Point>& foreground,
+                           const std::vector<cv::Point>& background, const Params& params);
+
+}  // namespace movseg

@@ -1,0 +1,62 @@
+#include "motion/estimators.h"
+
+#include <cmath>
+
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "motion/model.h"
+
+namespace movseg {
+
+// Least squares (exact for 3 points) through the normal equations of [x y 1] * row = target,
+// in coordinates centred on the points' mean so the system stays well conditioned.
+bool AffineEstimator::estimate(const std::vector<cv::Point2f>& x, const std::vector<cv::Point2f>& y,
+                               cv::Matx33d* model) {
+  if (x.size() < kMinNumSamples || x.size() != y.size()) return false;
+  cv::Point2d cx(0, 0), cy(0, 0);
+  for (size_t i = 0; i < x.size(); ++i) {
+    cx += cv::Point2d(x[i]);
+    cy += cv::Point2d(y[i]);
+  }
+  cx /= static_cast<double>(x.size());
+  cy /= static_cast<double>(y.size());
+  cv::Matx22d normal = cv::Matx22d::zeros();
+  cv::Matx22d rhs = cv::Matx22d::zeros();  // columns: target u, target v
+  for (size_t i = 0; i < x.size(); ++i) {
+    const cv::Point2d p = cv::Point2d(x[i]) - cx, q = cv::Point2d(y[i]) - cy;
+    normal += cv::Matx22d(p.x * p.x, p.x * p.y, p.x * p.y, p.y * p.y);
+    rhs += cv::Matx22d(p.x * q.x, p.x * q.y, p.y * q.x, p.y * q.y);
+  }
+  const double det = cv::determinant(normal);
+  const double scale = normal(0, 0) + normal(1, 1);
+  if (!(std::abs(det) > 1e-9 * scale * scale)) return false;  // collinear or coincident points
+  const cv::Matx22d a = (normal.inv() * rhs).t();            // rows: (a1 a2), (a3 a4)
+  const cv::Vec2d t = cv::Vec2d(cy.x, cy.y) - a * cv::Vec2d(cx.x, cx.y);
+  *model = cv::Matx33d(a(0, 0), a(0, 1), t[0], a(1, 0), a(1, 1), t[1], 0, 0, 1);
+  return true;
+}
+
+bool HomographyEstimator::estimate(const std::vector<cv::Point2f>& x,
+                                   const std::vector<cv::Point2f>& y, cv::Matx33d* model) {
+  if (x.size() < kMinNumSamples || x.size() != y.size()) return false;
+  // A degenerate sample (three collinear points) makes OpenCV return an empty matrix.
+  const cv::Mat h = x.size() == kMinNumSamples ? cv::getPerspectiveTransform(x, y)
+                                               : cv::findHomography(x, y, 0);
+  if (h.empty() || !cv::checkRange(h)) return false;
+  *model = cv::Matx33d(h);
+  if (std::abs((*model)(2, 2)) < 1e-12) return false;
+  *model *= 1.0 / (*model)(2, 2);
+  return cv::determinant(*model) > 1e-6;
+}
+
+void squaredResiduals(const std::vector<cv::Point2f>& x, const std::vector<cv::Point2f>& y,
+                      const cv::Matx33d& model, std::vector<double>* residuals) {
+  residuals->resize(x.size());
+  for (size_t i = 0; i < x.size(); ++i) {
+    const cv::Point2f d = applyModel(model, x[i]) - y[i];
+    (*residuals)[i] = static_cast<double>(d.x) * d.x + static_cast<double>(d.y) * d.y;
+  }
+}
+
+}  // namespace movseg
