@@ -9,5 +9,6 @@ namespace movseg::cli {
 void addSegmentCommand(CLI::App& app);
 void addSynthCommand(CLI::App& app);
 void addDemoCommand(CLI::App& app);
+void addEvalCommand(CLI::App& app);
 
 }  // namespace movseg::cli

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   movseg::cli::addSegmentCommand(app);
   movseg::cli::addSynthCommand(app);
   movseg::cli::addDemoCommand(app);
+  movseg::cli::addEvalCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
