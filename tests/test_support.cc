@@ -37,3 +37,35 @@ CommandResult runCli(const std::string& arguments) {
 }
 
 }  // namespace movseg::test
+
+#include <opencv2/imgproc.hpp>
+
+namespace movseg::test {
+
+cv::Mat texture(cv::Size size, std::uint64_t seed) {
+  cv::RNG rng(seed);
+  cv::Mat sum(size, CV_32FC3, cv::Scalar::all(0));
+  for (int scale : {1, 3, 9, 27}) {
+    const cv::Size small((size.width + scale - 1) / scale, (size.height + scale - 1) / scale);
+    cv::Mat noise(small, CV_32FC3);
+    rng.fill(noise, cv::RNG::UNIFORM, cv::Scalar::all(-1), cv::Scalar::all(1));
+    cv::Mat up;
+    cv::resize(noise, up, size, 0, 0, cv::INTER_CUBIC);
+    sum += up;
+  }
+  cv::Mat out;
+  sum.convertTo(out, CV_8UC3, 40, 128);
+  return out;
+}
+
+double cornerError(const cv::Matx33d& estimated, const cv::Matx33d& truth, cv::Size size) {
+  double worst = 0;
+  for (const cv::Vec3d& c : {cv::Vec3d(0, 0, 1), cv::Vec3d(size.width, 0, 1),
+                             cv::Vec3d(0, size.height, 1), cv::Vec3d(size.width, size.height, 1)}) {
+    const cv::Vec3d a = estimated * c, b = truth * c;
+    worst = std::max(worst, std::hypot(a[0] / a[2] - b[0] / b[2], a[1] / a[2] - b[1] / b[2]));
+  }
+  return worst;
+}
+
+}  // namespace movseg::test

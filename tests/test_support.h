@@ -28,3 +28,17 @@ struct CommandResult {
 CommandResult runCli(const std::string& arguments);
 
 }  // namespace movseg::test
+
+#include <cstdint>
+
+#include <opencv2/core.hpp>
+
+namespace movseg::test {
+
+// A richly textured BGR image (smoothed noise at several scales), the same for the same seed.
+cv::Mat texture(cv::Size size, std::uint64_t seed);
+
+// Maximum distance between the images of the four corners of a w x h frame under two models.
+double cornerError(const cv::Matx33d& estimated, const cv::Matx33d& truth, cv::Size size);
+
+}  // namespace movseg::test

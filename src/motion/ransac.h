@@ -1,8 +1,10 @@
 // One RANSAC loop for every model (COLMAP's split): the Estimator fits and scores models, the
-// sampler (SpreadSampler) chooses the minimal samples, this loop keeps the best hypothesis and
-// refits it by least squares on its inliers.
+// sampler (SpreadSampler) chooses the minimal samples, the support measure ranks hypotheses,
+// and this loop keeps the best one and refits it by least squares on its inliers.
 #pragma once
 
+#include <algorithm>
+#include <bitset>
 #include <cmath>
 #include <vector>
 
@@ -18,6 +20,19 @@ struct RansacOptions {
   double max_error = 1.0;    // inlier transfer error, pixels
   double confidence = 0.99;  // for the adaptive number of trials
   int grid = 3;              // SpreadSampler grid side
+};
+
+// Support of a hypothesis: first how much of the image its inliers cover (occupied cells of a
+// kCoverageGrid x kCoverageGrid grid), then how many there are. The background spans the image
+// while a moving object is local, so coverage keeps a densely textured object from winning on
+// numbers alone (docs/design.md).
+struct SpreadSupport {
+  static constexpr int kCoverageGrid = 8;
+  int cells = 0;
+  int inliers = 0;
+  bool operator>(const SpreadSupport& o) const {
+    return cells != o.cells ? cells > o.cells : inliers > o.inliers;
+  }
 };
 
 struct RansacReport {
@@ -41,7 +56,9 @@ class Ransac {
     const int n = static_cast<int>(x.size());
     if (n < Estimator::kMinNumSamples) return report;
 
-    if (initial != nullptr) consider(x, y, *initial, &report);
+    coverageCells(x, image_size);
+    SpreadSupport best;
+    if (initial != nullptr) consider(x, y, *initial, &best, &report);
     const SpreadSampler sampler(x, image_size, options_.grid);
     std::vector<int> sample;
     std::vector<cv::Point2f> sx(Estimator::kMinNumSamples), sy(Estimator::kMinNumSamples);
@@ -54,7 +71,7 @@ class Ransac {
       }
       cv::Matx33d model;
       if (!Estimator::estimate(sx, sy, &model)) continue;
-      if (consider(x, y, model, &report)) needed = trialsFor(report.support, n);
+      if (consider(x, y, model, &best, &report)) needed = trialsFor(best.inliers, n);
     }
     if (report.support < Estimator::kMinNumSamples) return report;
     refit(x, y, &report);
@@ -63,15 +80,32 @@ class Ransac {
   }
 
  private:
-  // Keeps `model` when it has more inliers than the best so far.
+  void coverageCells(const std::vector<cv::Point2f>& x, cv::Size image_size) const {
+    constexpr int g = SpreadSupport::kCoverageGrid;
+    cells_.resize(x.size());
+    for (size_t i = 0; i < x.size(); ++i) {
+      const int cx = std::clamp(static_cast<int>(x[i].x * g / image_size.width), 0, g - 1);
+      const int cy = std::clamp(static_cast<int>(x[i].y * g / image_size.height), 0, g - 1);
+      cells_[i] = cy * g + cx;
+    }
+  }
+
+  // Keeps `model` when its support beats the best so far.
   bool consider(const std::vector<cv::Point2f>& x, const std::vector<cv::Point2f>& y,
-                const cv::Matx33d& model, RansacReport* report) const {
+                const cv::Matx33d& model, SpreadSupport* best, RansacReport* report) const {
     squaredResiduals(x, y, model, &residuals_);
     const double limit = options_.max_error * options_.max_error;
-    int support = 0;
-    for (double r : residuals_) support += r <= limit;
-    if (support <= report->support) return false;
-    report->support = support;
+    std::bitset<SpreadSupport::kCoverageGrid * SpreadSupport::kCoverageGrid> covered;
+    SpreadSupport support;
+    for (size_t i = 0; i < residuals_.size(); ++i) {
+      if (residuals_[i] > limit) continue;
+      ++support.inliers;
+      covered.set(static_cast<size_t>(cells_[i]));
+    }
+    support.cells = static_cast<int>(covered.count());
+    if (!(support > *best)) return false;
+    *best = support;
+    report->support = support.inliers;
     report->model = model;
     return true;
   }
@@ -109,6 +143,7 @@ class Ransac {
 
   RansacOptions options_;
   mutable std::vector<double> residuals_;
+  mutable std::vector<int> cells_;
 };
 
 }  // namespace movseg
