@@ -63,6 +63,9 @@ struct Params {
   // Colour term of the geodesic metric: a step costs sqrt(1 + (gamma * |dC|)^2) pixels with
   // colours in [0, 1] (docs/design.md).
   double geodesic_gamma = 40.0;
+  // Max-flow only near the boundary of the geodesic labelling (D_F < D_B): pixels farther than
+  // this (segmentation-scale pixels) keep that label. 0 = the whole image (the exact minimum).
+  int cut_band = 8;
   // The geodesic distances and the cut run on the frame scaled to this width; the mask is
   // scaled back to full resolution. 0 = native size. Never upscales.
   int segmentation_width = 320;

@@ -45,6 +45,7 @@ struct Diagnostics {
   int background_seeds = 0;    // F_b after GMM refinement
   int unknown_seeds = 0;       // removed by the GMMs
   double lambda = 0;           // the threshold of eq. (3) used for this pair
+  int cut_nodes = 0;           // pixels left to max-flow after fixing the decided ones
   bool first_frame = false;    // no previous frame: empty mask
   bool reset = false;          // frame size changed: the segmenter restarted on this frame
   bool motion_fallback = false;  // too few matches: previous model (or identity) reused

@@ -28,6 +28,7 @@ void Params::check() const {
   require(lambda_noise_factor >= 0, "lambda_noise_factor must be >= 0");
   require(gmm_clusters >= 1, "gmm_clusters (K) must be >= 1");
   require(cut_weight >= 0, "cut_weight must be >= 0");
+  require(cut_band >= 0, "cut_band must be >= 0 (0 = whole image)");
   require(geodesic_gamma >= 0, "geodesic_gamma must be >= 0");
 }
 

@@ -158,6 +158,7 @@ void Segmenter::Impl::classifyAndCut(const PreparedFrame& cur, const cv::Mat& di
   } else {
     CutResult cut = geodesicGraphCut(cur.seg_bgr, fg, bg, params);
     mask = cut.mask;
+    diag.cut_nodes = cut.graph_nodes;
     if (params.debug_images) result->debug["confidence"] = drawConfidence(cut.confidence);
   }
   result->mask = upscaledMask(mask, cur.bgr.size());

@@ -26,9 +26,7 @@ cv::Mat stepCosts(const cv::Mat& colour, int dx, int dy, double gamma, double le
 
 }  // namespace
 
-GeodesicGrid::GeodesicGrid(const cv::Mat& bgr, double gamma) : size_(bgr.size()) {
-  cv::Mat colour;
-  bgr.convertTo(colour, CV_32FC3, 1.0 / 255.0);
+GeodesicGrid::GeodesicGrid(const cv::Mat& colour, double gamma) : size_(colour.size()) {
   right_ = stepCosts(colour, 1, 0, gamma, 1.0);
   down_left_ = stepCosts(colour, -1, 1, gamma, std::sqrt(2.0));
   down_ = stepCosts(colour, 0, 1, gamma, 1.0);

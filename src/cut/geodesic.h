@@ -12,7 +12,8 @@ namespace movseg {
 // precomputed once per image and shared by the foreground and background distances.
 class GeodesicGrid {
  public:
-  GeodesicGrid(const cv::Mat& bgr, double gamma);
+  // `colour`: CV_32FC3 in [0, 1].
+  GeodesicGrid(const cv::Mat& colour, double gamma);
 
   // Shortest-path distance from every pixel to the nearest seed (CV_32F), by `sweeps` pairs of
   // forward and backward raster passes (two suffice unless paths wind back and forth).

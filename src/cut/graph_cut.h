@@ -5,6 +5,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "cut/max_flow.h"
 #include "movseg/params.h"
 
 namespace movseg {
@@ -17,6 +18,7 @@ struct CutResult {
 
 // Segments `bgr` from foreground and background seed pixels. Needs at least one seed of each.
 CutResult geodesicGraphCut(const cv::Mat& bgr, const std::vector<cv::Point>& foreground,
-                           const std::vector<cv::Point>& background, const Params& params);
+                           const std::vector<cv::Point>& background, const Params& params,
+                           MaxFlowSolver solver = MaxFlowSolver::kOpenCv);
 
 }  // namespace movseg

@@ -1,0 +1,99 @@
+#include "cut/max_flow.h"
+
+// Boost.Graph's templates trip GCC's -Wmaybe-uninitialized inside Boost itself.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <boost/graph/adjacency_list.hpp>
+#include <boost/graph/boykov_kolmogorov_max_flow.hpp>
+#pragma GCC diagnostic pop
+#include <opencv2/core.hpp>  // gcgraph.hpp needs it first
+#include <opencv2/imgproc/detail/gcgraph.hpp>
+
+namespace movseg {
+
+int FlowGraph::addNode(float to_source, float to_sink) {
+  source.push_back(to_source);
+  sink.push_back(to_sink);
+  return nodes() - 1;
+}
+
+void FlowGraph::addEdge(int a, int b, float capacity) {
+  edge_from.push_back(a);
+  edge_to.push_back(b);
+  edge_capacity.push_back(capacity);
+}
+
+namespace {
+
+std::vector<std::uint8_t> cutWithOpenCv(const FlowGraph& g) {
+  cv::detail::GCGraph<float> graph(static_cast<unsigned>(g.nodes()),
+                                   static_cast<unsigned>(2 * g.edge_from.size()));
+  for (int i = 0; i < g.nodes(); ++i) {
+    graph.addVtx();
+    graph.addTermWeights(i, g.source[static_cast<size_t>(i)], g.sink[static_cast<size_t>(i)]);
+  }
+  for (size_t e = 0; e < g.edge_from.size(); ++e) {
+    graph.addEdges(g.edge_from[e], g.edge_to[e], g.edge_capacity[e], g.edge_capacity[e]);
+  }
+  graph.maxFlow();
+  std::vector<std::uint8_t> side(static_cast<size_t>(g.nodes()));
+  for (int i = 0; i < g.nodes(); ++i) side[static_cast<size_t>(i)] = graph.inSourceSegment(i);
+  return side;
+}
+
+std::vector<std::uint8_t> cutWithBoost(const FlowGraph& g) {
+  using Traits = boost::adjacency_list_traits<boost::vecS, boost::vecS, boost::directedS>;
+  using Graph = boost::adjacency_list<
+      boost::vecS, boost::vecS, boost::directedS,
+      boost::property<boost::vertex_index_t, long,
+                      boost::property<boost::vertex_color_t, boost::default_color_type,
+                                      boost::property<boost::vertex_distance_t, long,
+                                                      boost::property<boost::vertex_predecessor_t,
+                                                                      Traits::edge_descriptor>>>>,
+      boost::property<boost::edge_capacity_t, float,
+                      boost::property<boost::edge_residual_capacity_t, float,
+                                      boost::property<boost::edge_reverse_t,
+                                                      Traits::edge_descriptor>>>>;
+  const int n = g.nodes();
+  Graph graph(static_cast<size_t>(n + 2));
+  const auto source = static_cast<Traits::vertex_descriptor>(n);
+  const auto sink = static_cast<Traits::vertex_descriptor>(n + 1);
+  auto capacity = boost::get(boost::edge_capacity, graph);
+  auto reverse = boost::get(boost::edge_reverse, graph);
+  auto add = [&](Traits::vertex_descriptor a, Traits::vertex_descriptor b, float forward,
+                 float backward) {
+    const auto ab = boost::add_edge(a, b, graph).first;
+    const auto ba = boost::add_edge(b, a, graph).first;
+    capacity[ab] = forward;
+    capacity[ba] = backward;
+    reverse[ab] = ba;
+    reverse[ba] = ab;
+  };
+  for (int i = 0; i < n; ++i) {
+    const auto v = static_cast<Traits::vertex_descriptor>(i);
+    add(source, v, g.source[static_cast<size_t>(i)], 0.f);
+    add(v, sink, g.sink[static_cast<size_t>(i)], 0.f);
+  }
+  for (size_t e = 0; e < g.edge_from.size(); ++e) {
+    add(static_cast<Traits::vertex_descriptor>(g.edge_from[e]),
+        static_cast<Traits::vertex_descriptor>(g.edge_to[e]), g.edge_capacity[e],
+        g.edge_capacity[e]);
+  }
+  boost::boykov_kolmogorov_max_flow(graph, source, sink);
+  auto colour = boost::get(boost::vertex_color, graph);
+  const auto black = boost::color_traits<boost::default_color_type>::black();
+  std::vector<std::uint8_t> side(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    side[static_cast<size_t>(i)] =
+        boost::get(colour, static_cast<Traits::vertex_descriptor>(i)) == black;
+  }
+  return side;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> minimumCut(const FlowGraph& graph, MaxFlowSolver solver) {
+  return solver == MaxFlowSolver::kBoost ? cutWithBoost(graph) : cutWithOpenCv(graph);
+}
+
+}  // namespace movseg
