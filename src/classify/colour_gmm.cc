@@ -11,6 +11,11 @@ namespace {
 // zero variance and an infinite density (sensor noise alone is about this large).
 constexpr double kMinVariance = 4.0;
 
+// Farthest-point clustering makes outliers centres of their own; a colour seen at fewer points
+// than this is not a mode of the set and gets no component (it would otherwise vouch for
+// itself, e.g. keep a mislabelled point that has the other set's colour).
+constexpr int kMinComponentSize = 3;
+
 float squaredDistance(const cv::Vec3f& a, const cv::Vec3f& b) {
   const cv::Vec3f d = a - b;
   return d.dot(d);
@@ -53,8 +58,9 @@ ColourGmm ColourGmm::fit(const std::vector<cv::Vec3f>& samples, int k) {
     sum_sq[c] += s.mul(s);
   }
   const double log_two_pi = std::log(2 * CV_PI);
+  const bool enough = *std::max_element(count.begin(), count.end()) >= kMinComponentSize;
   for (size_t c = 0; c < count.size(); ++c) {
-    if (count[c] == 0) continue;
+    if (count[c] == 0 || (enough && count[c] < kMinComponentSize)) continue;
     Component comp;
     comp.log_weight = std::log(static_cast<double>(count[c]) / samples.size());
     comp.mean = sum[c] / count[c];

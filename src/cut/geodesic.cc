@@ -33,59 +33,74 @@ GeodesicGrid::GeodesicGrid(const cv::Mat& colour, double gamma) : size_(colour.s
   down_right_ = stepCosts(colour, 1, 1, gamma, std::sqrt(2.0));
 }
 
-cv::Mat GeodesicGrid::distanceFrom(const std::vector<cv::Point>& seeds, int sweeps) const {
+cv::Mat GeodesicGrid::distanceFrom(const std::vector<cv::Point>& seeds, int max_sweeps) const {
   cv::Mat distance(size_, CV_32F, cv::Scalar(std::numeric_limits<float>::infinity()));
   if (seeds.empty()) return distance;
   for (const cv::Point& s : seeds) distance.at<float>(s) = 0.f;
-  for (int i = 0; i < sweeps; ++i) {
-    forwardPass(distance);
-    backwardPass(distance);
+  for (int i = 0; i < max_sweeps; ++i) {
+    const bool forward_changed = forwardPass(distance);
+    const bool backward_changed = backwardPass(distance);
+    if (i > 0 && !forward_changed && !backward_changed) break;
   }
   return distance;
 }
 
-// Relaxes each pixel from its already visited neighbours: left, up-left, up, up-right.
-void GeodesicGrid::forwardPass(cv::Mat& distance) const {
-  const int w = size_.width;
-  for (int y = 0; y < size_.height; ++y) {
-    float* d = distance.ptr<float>(y);
-    const float* right = right_.ptr<float>(y);
-    for (int x = 1; x < w; ++x) d[x] = std::min(d[x], d[x - 1] + right[x - 1]);
-    if (y == 0) continue;
-    const float* up = distance.ptr<float>(y - 1);
-    const float* down = down_.ptr<float>(y - 1);
-    const float* down_left = down_left_.ptr<float>(y - 1);
-    const float* down_right = down_right_.ptr<float>(y - 1);
-    for (int x = 0; x < w; ++x) {
-      float best = std::min(d[x], up[x] + down[x]);
-      if (x > 0) best = std::min(best, up[x - 1] + down_right[x - 1]);
-      if (x + 1 < w) best = std::min(best, up[x + 1] + down_left[x + 1]);
-      d[x] = best;
-    }
-    for (int x = 1; x < w; ++x) d[x] = std::min(d[x], d[x - 1] + right[x - 1]);
+namespace {
+
+// d = min(d, candidate), noting a decrease.
+inline void relax(float& d, float candidate, bool* changed) {
+  if (candidate < d) {
+    d = candidate;
+    *changed = true;
   }
 }
 
-// Relaxes each pixel from right, down-right, down, down-left.
-void GeodesicGrid::backwardPass(cv::Mat& distance) const {
+}  // namespace
+
+// Relaxes each pixel from its already visited neighbours: left, up-left, up, up-right.
+bool GeodesicGrid::forwardPass(cv::Mat& distance) const {
   const int w = size_.width;
+  bool changed = false;
+  for (int y = 0; y < size_.height; ++y) {
+    float* d = distance.ptr<float>(y);
+    const float* right = right_.ptr<float>(y);
+    if (y > 0) {
+      const float* up = distance.ptr<float>(y - 1);
+      const float* down = down_.ptr<float>(y - 1);
+      const float* down_left = down_left_.ptr<float>(y - 1);
+      const float* down_right = down_right_.ptr<float>(y - 1);
+      for (int x = 0; x < w; ++x) {
+        relax(d[x], up[x] + down[x], &changed);
+        if (x > 0) relax(d[x], up[x - 1] + down_right[x - 1], &changed);
+        if (x + 1 < w) relax(d[x], up[x + 1] + down_left[x + 1], &changed);
+      }
+    }
+    for (int x = 1; x < w; ++x) relax(d[x], d[x - 1] + right[x - 1], &changed);
+  }
+  return changed;
+}
+
+// Relaxes each pixel from right, down-right, down, down-left.
+bool GeodesicGrid::backwardPass(cv::Mat& distance) const {
+  const int w = size_.width;
+  bool changed = false;
   for (int y = size_.height - 1; y >= 0; --y) {
     float* d = distance.ptr<float>(y);
     const float* right = right_.ptr<float>(y);
-    for (int x = w - 2; x >= 0; --x) d[x] = std::min(d[x], d[x + 1] + right[x]);
-    if (y + 1 == size_.height) continue;
-    const float* below = distance.ptr<float>(y + 1);
-    const float* down = down_.ptr<float>(y);
-    const float* down_left = down_left_.ptr<float>(y);
-    const float* down_right = down_right_.ptr<float>(y);
-    for (int x = 0; x < w; ++x) {
-      float best = std::min(d[x], below[x] + down[x]);
-      if (x + 1 < w) best = std::min(best, below[x + 1] + down_right[x]);
-      if (x > 0) best = std::min(best, below[x - 1] + down_left[x]);
-      d[x] = best;
+    if (y + 1 < size_.height) {
+      const float* below = distance.ptr<float>(y + 1);
+      const float* down = down_.ptr<float>(y);
+      const float* down_left = down_left_.ptr<float>(y);
+      const float* down_right = down_right_.ptr<float>(y);
+      for (int x = 0; x < w; ++x) {
+        relax(d[x], below[x] + down[x], &changed);
+        if (x + 1 < w) relax(d[x], below[x + 1] + down_right[x], &changed);
+        if (x > 0) relax(d[x], below[x - 1] + down_left[x], &changed);
+      }
     }
-    for (int x = w - 2; x >= 0; --x) d[x] = std::min(d[x], d[x + 1] + right[x]);
+    for (int x = w - 2; x >= 0; --x) relax(d[x], d[x + 1] + right[x], &changed);
   }
+  return changed;
 }
 
 }  // namespace movseg

@@ -15,16 +15,18 @@ class GeodesicGrid {
   // `colour`: CV_32FC3 in [0, 1].
   GeodesicGrid(const cv::Mat& colour, double gamma);
 
-  // Shortest-path distance from every pixel to the nearest seed (CV_32F), by `sweeps` pairs of
-  // forward and backward raster passes (two suffice unless paths wind back and forth).
-  // Without seeds every distance is +infinity.
-  cv::Mat distanceFrom(const std::vector<cv::Point>& seeds, int sweeps = 2) const;
+  // Shortest-path distance from every pixel to the nearest seed (CV_32F), by pairs of forward
+  // and backward raster passes until nothing changes, at most `max_sweeps` pairs. Each pair
+  // follows paths that turn back at most once per direction, so a few pairs are exact on most
+  // images and two are close (docs/design.md). Without seeds every distance is +infinity.
+  cv::Mat distanceFrom(const std::vector<cv::Point>& seeds, int max_sweeps = 2) const;
 
   cv::Size size() const { return size_; }
 
  private:
-  void forwardPass(cv::Mat& distance) const;
-  void backwardPass(cv::Mat& distance) const;
+  // Each returns whether any distance decreased.
+  bool forwardPass(cv::Mat& distance) const;
+  bool backwardPass(cv::Mat& distance) const;
 
   cv::Size size_;
   // Cost of the step from (x, y) to its neighbour right, down-left, down, down-right.
