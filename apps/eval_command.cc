@@ -1,10 +1,96 @@
-// movseg eval PRED GT ...  (metrics: src/eval/)
+// movseg eval PRED GT [--format auto|plain|davis|segtrack|cdnet] [--json FILE] [--csv FILE]
+// (metrics and layouts: src/eval/, docs/metrics.md)
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
 #include "commands.h"
+#include "eval/dataset.h"
+#include "io/atomic_write.h"
 
 namespace movseg::cli {
+namespace {
+
+struct EvalOptions {
+  std::string pred;
+  std::string gt;
+  std::string format = "auto";  // a key of gtFormatNames()
+  std::string json_file;
+  std::string csv_file;
+};
+
+// "2 davis sequences", "1 cdnet sequence, 1 plain sequence".
+std::string describeGroundTruth(const std::vector<GtSequence>& sequences) {
+  std::map<std::string, int> counts;
+  for (const GtSequence& sequence : sequences) ++counts[gtFormatName(sequence.format)];
+  std::string text;
+  for (const auto& [name, count] : counts) {
+    text += (text.empty() ? "" : ", ") + std::to_string(count) + " " + name +
+            (count == 1 ? " sequence" : " sequences");
+  }
+  return text;
+}
+
+// A sequence without a counted frame has no score, and a mean over the others would pass for
+// the whole set's: fail, naming the first such sequence.
+void requireCountedFrames(const std::vector<GtSequence>& sequences,
+                          const std::vector<SequenceScore>& scores, const std::string& pred) {
+  std::vector<size_t> unscored;
+  for (size_t i = 0; i < scores.size(); ++i) {
+    if (scores[i].counted().empty()) unscored.push_back(i);
+  }
+  if (unscored.empty()) return;
+  const SequenceScore& first = scores[unscored.front()];
+  const std::string more =
+      unscored.size() > 1 ? " (nor for " + std::to_string(unscored.size() - 1) + " more)" : "";
+  if (first.missing > 0) {
+    throw std::runtime_error("no predicted mask for sequence '" + first.name + "' in '" +
+                             predictionDir(sequences[unscored.front()], pred) + "'" + more);
+  }
+  throw std::runtime_error("sequence '" + first.name +
+                           "' has no ground-truth frame to score besides its first");
+}
+
+void runEval(const EvalOptions& options) {
+  std::error_code error;
+  if (!std::filesystem::is_directory(options.pred, error)) {
+    throw std::runtime_error("prediction folder '" + options.pred + "' does not exist");
+  }
+  const std::vector<GtSequence> sequences =
+      loadGroundTruth(options.gt, gtFormatNames().at(options.format));
+  const std::vector<SequenceScore> scores = scoreDataset(sequences, options.pred);
+  std::cout << "eval: " << describeGroundTruth(sequences) << " in '" << options.gt << "'\n"
+            << formatScoreTable(scores);
+  requireCountedFrames(sequences, scores, options.pred);
+  if (!options.csv_file.empty()) writeTextAtomic(options.csv_file, scoresCsv(scores));
+  if (!options.json_file.empty()) writeTextAtomic(options.json_file, scoresJson(scores));
+}
+
+}  // namespace
 
 void addEvalCommand(CLI::App& app) {
-  app.add_subcommand("eval", "Score predicted masks against ground truth");
+  auto options = std::make_shared<EvalOptions>();
+  CLI::App* cmd = app.add_subcommand("eval", "Score predicted masks against ground truth");
+  cmd->add_option("PRED", options->pred,
+                  "Predicted masks (non-zero = foreground): a mask folder, or for a dataset GT "
+                  "one folder per sequence (PRED/<sequence>/ or PRED/<sequence>/masks/)")
+      ->required();
+  cmd->add_option("GT", options->gt,
+                  "Ground truth: a mask folder, a sequence (<seq>/masks/, ground-truth/, "
+                  "groundtruth/) or a dataset folder of such sequences")
+      ->required();
+  std::vector<std::string> formats;
+  for (const auto& entry : gtFormatNames()) formats.push_back(entry.first);
+  cmd->add_option("--format", options->format, "Ground-truth layout")
+      ->check(CLI::IsMember(formats))
+      ->capture_default_str();
+  cmd->add_option("--json", options->json_file, "Per-sequence means and per-frame scores as JSON");
+  cmd->add_option("--csv", options->csv_file,
+                  "Per-frame scores: sequence,frame,J,F,error_rate,precision,recall,f1");
+  cmd->callback([options] { runEval(*options); });
 }
 
 }  // namespace movseg::cli

@@ -1,0 +1,131 @@
+// `movseg eval` end to end: tiny mask folders in a temp dir, the printed table and the files.
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "eval/eval_fixture.h"
+#include "test_support.h"
+
+namespace movseg {
+namespace {
+
+using test::rectMask;
+using test::writeImage;
+
+const cv::Size kSize(10, 10);
+const cv::Rect kSquare(0, 0, 4, 4);
+
+std::string readFile(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// GT: 00000 (empty), 00001 and 00002 (the 4x4 square at the origin). PRED: 00000 everything
+// (not counted: first frame), 00001 the square moved to (2, 2), 00002 the square.
+// Frame 1: J = 4 / 28 = 1/7, error 24 %, tp 4 fp 12 fn 12. F with a 1-px tolerance
+// (ceil(0.008 * 14.1)): the truth's boundary is column 3 and row 3 of the square (7 px); the
+// prediction's is its column 5 and row 5 (7 px) plus the background row 1 (columns 1-5) and
+// column 1 (rows 2-5) in front of it (9 px). Within 1 px (4-neighbours) of the other: 6 of the
+// 16 predicted pixels ((1,2) (1,3) (1,4) (2,1) (3,1) (4,1)) and 6 of the 7 true ones (all but
+// (3,3)): F = 2 * 6 / (16 + 7) = 12/23 = 0.521739. Frame 2: J 1, F 1, error 0, tp 16.
+// Means: J = (1/7 + 1) / 2 = 4/7 = 0.571, error 12.00 %, J recall 0.5;
+// summed P = R = 20 / 32 = 0.625.
+void writePlainPair(const test::TempDir& dir) {
+  writeImage(dir / "gt", "00000.png", rectMask(kSize, {}));
+  writeImage(dir / "gt", "00001.png", rectMask(kSize, kSquare));
+  writeImage(dir / "gt", "00002.png", rectMask(kSize, kSquare));
+  writeImage(dir / "pred", "00000.png", rectMask(kSize, {0, 0, 10, 10}));
+  writeImage(dir / "pred", "1.png", rectMask(kSize, {2, 2, 4, 4}));
+  writeImage(dir / "pred", "00002.png", rectMask(kSize, kSquare));
+}
+
+TEST(EvalCli, PrintsTableAndWritesCsvAndJson) {
+  test::TempDir dir;
+  writePlainPair(dir);
+  const test::CommandResult run =
+      test::runCli("eval '" + (dir / "pred") + "' '" + (dir / "gt") + "' --csv '" +
+                   (dir / "s.csv") + "' --json '" + (dir / "s.json") + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("1 plain sequence"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("0.571"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("12.00"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("0.625"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("first frame of each sequence is not counted"), std::string::npos);
+
+  EXPECT_EQ(readFile(dir / "s.csv"),
+            "sequence,frame,J,F,error_rate,precision,recall,f1\n"
+            "gt,1,0.142857,0.521739,24,0.25,0.25,0.25\n"
+            "gt,2,1,1,0,1,1,1\n");
+
+  const nlohmann::json report = nlohmann::json::parse(readFile(dir / "s.json"));
+  const nlohmann::json& sequence = report.at("sequences").at(0);
+  EXPECT_EQ(sequence.at("name"), "gt");
+  EXPECT_EQ(sequence.at("frames"), 2);
+  EXPECT_NEAR(sequence.at("J").get<double>(), 4.0 / 7, 1e-12);
+  EXPECT_NEAR(sequence.at("J_recall").get<double>(), 0.5, 1e-12);
+  EXPECT_NEAR(sequence.at("precision").get<double>(), 0.625, 1e-12);
+  EXPECT_EQ(sequence.at("per_frame").size(), 2u);
+  EXPECT_EQ(sequence.at("per_frame").at(0).at("fp"), 12);
+  EXPECT_NEAR(report.at("mean").at("J").get<double>(), 4.0 / 7, 1e-12);
+}
+
+TEST(EvalCli, DatasetLayoutScoresEverySequence) {
+  test::TempDir dir;
+  for (const std::string name : {"one", "two"}) {
+    for (int i = 0; i < 2; ++i) {
+      const std::string file = "0000" + std::to_string(i) + ".png";
+      writeImage(dir / ("gt/" + name + "/frames"), file, rectMask(kSize, {}));
+      writeImage(dir / ("gt/" + name + "/masks"), file, rectMask(kSize, kSquare));
+      writeImage(dir / ("pred/" + name), file, rectMask(kSize, kSquare));
+    }
+  }
+  const test::CommandResult run =
+      test::runCli("eval '" + (dir / "pred") + "' '" + (dir / "gt") + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("2 davis sequences"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("\none "), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("\ntwo "), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("\nmean "), std::string::npos) << run.output;
+}
+
+TEST(EvalCli, NoPredictionsAtAllFails) {
+  test::TempDir dir;
+  writePlainPair(dir);
+  std::filesystem::create_directories(dir / "nothing");
+  const test::CommandResult run = test::runCli("eval '" + (dir / "nothing") + "' '" + (dir / "gt") +
+                                               "' --csv '" + (dir / "s.csv") + "'");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_NE(run.output.find("movseg: error: no predicted mask for sequence 'gt'"),
+            std::string::npos)
+      << run.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "s.csv"));
+}
+
+TEST(EvalCli, BadGroundTruthIsAOneLineError) {
+  test::TempDir dir;
+  std::filesystem::create_directories(dir / "empty");
+  const test::CommandResult run =
+      test::runCli("eval '" + dir.path() + "' '" + (dir / "empty") + "'");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_EQ(run.output.rfind("movseg: error: ground truth '", 0), 0u) << run.output;
+  EXPECT_EQ(run.output.find('\n'), run.output.size() - 1) << run.output;
+}
+
+TEST(EvalCli, ResizedPredictionIsAnError) {
+  test::TempDir dir;
+  writePlainPair(dir);
+  writeImage(dir / "pred", "00002.png", rectMask({20, 10}, {}));
+  const test::CommandResult run =
+      test::runCli("eval '" + (dir / "pred") + "' '" + (dir / "gt") + "'");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.output.find("00002.png' is 20x10"), std::string::npos) << run.output;
+}
+
+}  // namespace
+}  // namespace movseg
