@@ -1,10 +1,80 @@
-// movseg synth -o DIR ...  (generator: src/synth/)
+// movseg synth -o DIR [--frames N] [--size WxH] [--seed S] [--camera NAME] [--objects K] ...
+#include <iostream>
+#include <memory>
+#include <regex>
+#include <stdexcept>
+#include <string>
+
 #include "commands.h"
+#include "synth/synth.h"
 
 namespace movseg::cli {
+namespace {
+
+struct SynthCommandOptions {
+  std::string output_dir;
+  std::string size = "320x240";
+  std::string camera = "mix";
+  SynthOptions synth;
+};
+
+cv::Size parseSize(const std::string& text) {
+  const std::regex pattern(R"((\d{1,6})[xX](\d{1,6}))");
+  std::smatch match;
+  if (!std::regex_match(text, match, pattern)) {
+    throw std::invalid_argument("--size must be WIDTHxHEIGHT, e.g. 320x240 (got '" + text + "')");
+  }
+  return {std::stoi(match[1]), std::stoi(match[2])};
+}
+
+// CLI11 reads "-1" into an unsigned option as 2^64 - 1; a negative seed is a typo, not a seed.
+CLI::Validator nonNegative() {
+  return CLI::Validator(
+      [](std::string& value) {
+        return value.rfind('-', 0) == 0 ? "must be a non-negative integer (got " + value + ")"
+                                        : std::string();
+      },
+      "");
+}
+
+std::string describe(const SynthOptions& o, const std::string& dir) {
+  return "wrote " + std::to_string(o.frames) + " frames (" + std::to_string(o.size.width) + "x" +
+         std::to_string(o.size.height) + ", camera " + synthCameraName(o.camera) + ", " +
+         std::to_string(o.objects) + (o.objects == 1 ? " object" : " objects") + ", seed " +
+         std::to_string(o.seed) + ") to " + dir;
+}
+
+}  // namespace
 
 void addSynthCommand(CLI::App& app) {
-  app.add_subcommand("synth", "Write a deterministic synthetic sequence with exact ground truth");
+  auto options = std::make_shared<SynthCommandOptions>();
+  SynthOptions& synth = options->synth;
+  CLI::App* cmd = app.add_subcommand(
+      "synth", "Write a deterministic synthetic sequence with exact ground truth");
+  cmd->add_option("-o,--output", options->output_dir,
+                  "Folder for frames/, masks/ (00000.png, ...) and camera.jsonl")
+      ->required();
+  cmd->add_option("--frames", synth.frames, "Number of frames")->capture_default_str();
+  cmd->add_option("--size", options->size, "Frame size WIDTHxHEIGHT")->capture_default_str();
+  cmd->add_option("--seed", synth.seed, "Seed: equal seeds give identical files")
+      ->check(nonNegative())
+      ->capture_default_str();
+  cmd->add_option("--camera", options->camera,
+                  "Camera motion: pan, zoom, rotate, shake, static, mix")
+      ->capture_default_str();
+  cmd->add_option("--objects", synth.objects, "Independently moving objects (1-3)")
+      ->capture_default_str();
+  cmd->add_option("--noise", synth.noise_sigma, "Sensor noise sigma, 8-bit levels")
+      ->capture_default_str();
+  cmd->add_option("--illumination", synth.illumination_drift,
+                  "Slow global gain change: the gain stays within 1 +- this")
+      ->capture_default_str();
+  cmd->callback([options] {
+    options->synth.size = parseSize(options->size);
+    options->synth.camera = parseSynthCamera(options->camera);
+    writeSynthSequence(options->output_dir, options->synth);
+    std::cout << "synth: " << describe(options->synth, options->output_dir) << "\n";
+  });
 }
 
 }  // namespace movseg::cli

@@ -1,0 +1,30 @@
+// The synthetic moving objects: textured shapes moving in image coordinates, independently of
+// the camera, bouncing inside a box around the frame that lets some of them leave and return.
+#pragma once
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "synth/texture.h"
+
+namespace movseg {
+
+struct SynthObject {
+  std::vector<cv::Point2d> outline;  // ellipse, polygon or blob around the object's centre
+  cv::Mat texture;                   // CV_8UC3, square, its centre on the object's centre
+  std::vector<cv::Point2d> centre;   // per frame, image pixel coordinates
+  std::vector<double> angle;         // per frame, radians
+};
+
+// `count` objects for a clip of `frames` frames: each covers 5 % to 25 % / sqrt(count) of the
+// frame and moves at 1–6 px/frame at 320x240 (scaled with the frame width), along gently curving
+// paths while turning slowly.
+std::vector<SynthObject> makeObjects(int count, int frames, cv::Size frame_size,
+                                     const Palette& palette, cv::RNG& rng);
+
+// Draws the object as it is at frame t into `frame` (CV_8UC3) and sets 255 in `mask` (CV_8U)
+// on exactly the pixels it drew.
+void drawObject(const SynthObject& object, int t, cv::Mat& frame, cv::Mat& mask);
+
+}  // namespace movseg

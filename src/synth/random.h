@@ -1,0 +1,52 @@
+// Random numbers of the synthetic generator. Each part (palette, background, camera, objects,
+// illumination, each frame's noise) draws from its own cv::RNG seeded from the options' seed, so
+// a part drawing more numbers never shifts another's, and frame t's noise needs no earlier frame.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include <opencv2/core.hpp>
+
+namespace movseg {
+
+enum class SynthStream : std::uint64_t {
+  kPalette = 1,
+  kBackground,
+  kCamera,
+  kObjects,
+  kIllumination,
+  kNoise,
+};
+
+// SplitMix64's finaliser: neighbouring seeds give unrelated generator states.
+inline std::uint64_t splitMix64(std::uint64_t x) {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+inline cv::RNG synthRng(std::uint64_t seed, SynthStream stream, std::uint64_t index = 0) {
+  return cv::RNG(
+      splitMix64(splitMix64(splitMix64(seed) ^ static_cast<std::uint64_t>(stream)) ^ index));
+}
+
+// amplitude * sin(2π t / period + phase): the smooth, bounded motions of the generator.
+struct Wave {
+  double amplitude = 0;
+  double period = 1;
+  double phase = 0;
+  double at(double t) const { return amplitude * std::sin(2 * CV_PI * t / period + phase); }
+};
+
+// A wave of random period and phase whose rate of change peaks at `max_rate` per frame.
+inline Wave waveWithRate(double max_rate, double min_period, double max_period, cv::RNG& rng) {
+  Wave wave;
+  wave.period = rng.uniform(min_period, max_period);
+  wave.phase = rng.uniform(0.0, 2 * CV_PI);
+  wave.amplitude = max_rate * wave.period / (2 * CV_PI);
+  return wave;
+}
+
+}  // namespace movseg

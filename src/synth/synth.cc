@@ -1,0 +1,186 @@
+#include "synth/synth.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "io/atomic_write.h"
+#include "synth/camera_path.h"
+#include "synth/objects.h"
+#include "synth/random.h"
+#include "synth/texture.h"
+
+namespace movseg {
+namespace {
+
+constexpr int kMaxFrames = 100000;  // file names have five digits
+constexpr int kMinSide = 16;
+constexpr int kMaxSide =
+    2048;  // the canvas is a few times the frame: ~400 MB to build at 2048x2048
+
+const std::pair<const char*, SynthCamera> kCameraNames[] = {
+    {"pan", SynthCamera::kPan},       {"zoom", SynthCamera::kZoom},
+    {"rotate", SynthCamera::kRotate}, {"shake", SynthCamera::kShake},
+    {"static", SynthCamera::kStatic}, {"mix", SynthCamera::kMix},
+};
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument("invalid synth option: " + what);
+}
+
+void checkOptions(const SynthOptions& o) {
+  require(o.frames >= 1 && o.frames <= kMaxFrames, "frames must be in [1, " +
+                                                       std::to_string(kMaxFrames) + "] (got " +
+                                                       std::to_string(o.frames) + ")");
+  const auto side_ok = [](int side) { return side >= kMinSide && side <= kMaxSide; };
+  require(side_ok(o.size.width) && side_ok(o.size.height),
+          "size must be within " + std::to_string(kMinSide) + "x" + std::to_string(kMinSide) +
+              " .. " + std::to_string(kMaxSide) + "x" + std::to_string(kMaxSide) + " (got " +
+              std::to_string(o.size.width) + "x" + std::to_string(o.size.height) + ")");
+  require(o.objects >= 1 && o.objects <= 3,
+          "objects must be in [1, 3] (got " + std::to_string(o.objects) + ")");
+  require(o.noise_sigma >= 0 && o.noise_sigma <= 64, "noise_sigma must be in [0, 64]");
+  require(o.illumination_drift >= 0 && o.illumination_drift <= 0.5,
+          "illumination_drift must be in [0, 0.5]");
+}
+
+// A static camera gives the identity exactly, not a rounding of H * H^-1.
+cv::Matx33d frameToFrame(const cv::Matx33d& previous, const cv::Matx33d& current) {
+  if (current == previous) return cv::Matx33d::eye();
+  const cv::Matx33d model = current * previous.inv();
+  return model * (1.0 / model(2, 2));
+}
+
+// Global gain, then Gaussian noise, then rounding to 8 bits: objects and background alike.
+void expose(cv::Mat& frame, double gain, double noise_sigma, cv::RNG rng) {
+  cv::Mat light;
+  frame.convertTo(light, CV_32F, gain);
+  if (noise_sigma > 0) {
+    cv::Mat noise(light.size(), light.type());
+    rng.fill(noise, cv::RNG::NORMAL, cv::Scalar::all(0), cv::Scalar::all(noise_sigma));
+    light += noise;
+  }
+  light.convertTo(frame, CV_8U);
+}
+
+void makeFolder(const std::string& path) {
+  std::error_code error;
+  std::filesystem::create_directories(path, error);
+  if (error || !std::filesystem::is_directory(path)) {
+    throw std::runtime_error("cannot create output folder '" + path + "'" +
+                             (error ? ": " + error.message() : ""));
+  }
+}
+
+std::string imageName(int t) {
+  char name[32];
+  std::snprintf(name, sizeof(name), "%05d.png", t);
+  return name;
+}
+
+std::string cameraLine(int t, const cv::Matx33d& model) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (int r = 0; r < 3; ++r)
+    rows.push_back(nlohmann::json::array({model(r, 0), model(r, 1), model(r, 2)}));
+  nlohmann::json line;
+  line["frame"] = t;
+  line["model"] = rows;
+  return line.dump();
+}
+
+}  // namespace
+
+struct SynthSequence::State {
+  SynthOptions options;
+  cv::Mat canvas;                  // the background plane; empty without a background
+  std::vector<cv::Matx33d> views;  // H_t: canvas pixel -> frame t pixel
+  std::vector<SynthObject> objects;
+  Wave gain_change;  // gain(t) - 1
+};
+
+SynthSequence::SynthSequence(const SynthOptions& options) {
+  checkOptions(options);
+  auto state = std::make_shared<State>();
+  state->options = options;
+  const double scale = options.size.width / 320.0;
+  cv::RNG palette_rng = synthRng(options.seed, SynthStream::kPalette);
+  const Palette palette = makeBackgroundPalette(palette_rng);
+  cv::RNG camera_rng = synthRng(options.seed, SynthStream::kCamera);
+  CameraPath path = makeCameraPath(options.camera, options.frames, options.size, camera_rng);
+  state->views = std::move(path.views);
+  if (options.background) {
+    cv::RNG background_rng = synthRng(options.seed, SynthStream::kBackground);
+    state->canvas = makeBackgroundTexture(path.canvas, palette, scale, background_rng);
+  }
+  cv::RNG object_rng = synthRng(options.seed, SynthStream::kObjects);
+  state->objects = makeObjects(options.objects, options.frames, options.size, palette, object_rng);
+  // A slow drift: at least 150 frames per cycle.
+  cv::RNG light_rng = synthRng(options.seed, SynthStream::kIllumination);
+  state->gain_change.amplitude = options.illumination_drift;
+  state->gain_change.period = light_rng.uniform(150.0, 300.0);
+  state->gain_change.phase = light_rng.uniform(0.0, 2 * CV_PI);
+  state_ = std::move(state);
+}
+
+int SynthSequence::size() const { return state_->options.frames; }
+
+const SynthOptions& SynthSequence::options() const { return state_->options; }
+
+SynthFrame SynthSequence::frame(int t) const {
+  if (t < 0 || t >= size()) {
+    throw std::out_of_range("synthetic frame " + std::to_string(t) + " outside [0, " +
+                            std::to_string(size()) + ")");
+  }
+  const State& state = *state_;
+  const SynthOptions& options = state.options;
+  SynthFrame out;
+  if (options.background) {
+    cv::warpPerspective(state.canvas, out.frame, state.views[t], options.size, cv::INTER_LINEAR);
+  } else {
+    out.frame = cv::Mat::zeros(options.size, CV_8UC3);
+  }
+  out.mask = cv::Mat::zeros(options.size, CV_8U);
+  for (const SynthObject& object : state.objects) drawObject(object, t, out.frame, out.mask);
+  expose(out.frame, 1 + state.gain_change.at(t), options.noise_sigma,
+         synthRng(options.seed, SynthStream::kNoise, static_cast<std::uint64_t>(t)));
+  out.camera = t == 0 ? cv::Matx33d::eye() : frameToFrame(state.views[t - 1], state.views[t]);
+  return out;
+}
+
+void writeSynthSequence(const std::string& dir, const SynthOptions& options) {
+  const SynthSequence sequence(options);
+  const std::string frames_dir = dir + "/frames", masks_dir = dir + "/masks";
+  makeFolder(frames_dir);
+  makeFolder(masks_dir);
+  std::string cameras;
+  for (int t = 0; t < sequence.size(); ++t) {
+    const SynthFrame frame = sequence.frame(t);
+    writeImageAtomic(frames_dir + "/" + imageName(t), frame.frame);
+    writeImageAtomic(masks_dir + "/" + imageName(t), frame.mask);
+    if (t > 0) cameras += cameraLine(t, frame.camera) + "\n";
+  }
+  writeTextAtomic(dir + "/camera.jsonl", cameras);
+}
+
+SynthCamera parseSynthCamera(const std::string& name) {
+  std::string known;
+  for (const auto& [camera_name, camera] : kCameraNames) {
+    if (name == camera_name) return camera;
+    known += std::string(known.empty() ? "" : ", ") + camera_name;
+  }
+  throw std::invalid_argument("unknown camera motion '" + name + "' (known: " + known + ")");
+}
+
+std::string synthCameraName(SynthCamera camera) {
+  for (const auto& [camera_name, value] : kCameraNames) {
+    if (value == camera) return camera_name;
+  }
+  throw std::invalid_argument("unknown SynthCamera value");
+}
+
+}  // namespace movseg

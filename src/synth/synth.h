@@ -1,0 +1,67 @@
+// Synthetic moving-camera video with exact ground truth: a textured background plane seen
+// through a known homography per frame, and 1–3 textured objects that move in the image
+// independently of the camera (docs/synth.md).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include <opencv2/core.hpp>
+
+namespace movseg {
+
+// How the camera moves over the background plane. kMix combines pan, zoom, rotation, shake and
+// a slowly changing tilt. Every mode sees the plane under a mild fixed tilt (perspective).
+enum class SynthCamera { kPan, kZoom, kRotate, kShake, kStatic, kMix };
+
+struct SynthOptions {
+  int frames = 60;
+  cv::Size size{320, 240};
+  std::uint64_t seed = 1;
+  SynthCamera camera = SynthCamera::kMix;
+  int objects = 2;  // 1..3 independently moving objects
+  // Gaussian sensor noise: standard deviation in 8-bit levels (0 = none).
+  double noise_sigma = 2.5;
+  // Slow global illumination change: the gain stays within 1 ± this.
+  double illumination_drift = 0.04;
+  // false: the objects are drawn on black. Object textures never contain black, so the ground
+  // truth can then be checked pixel by pixel.
+  bool background = true;
+};
+
+struct SynthFrame {
+  cv::Mat frame;       // CV_8UC3 BGR
+  cv::Mat mask;        // CV_8U 0/255: 255 exactly where an object pixel was drawn
+  cv::Matx33d camera;  // maps frame t-1 pixel coordinates to frame t's (identity for t = 0)
+};
+
+class SynthSequence {
+ public:
+  // Throws std::invalid_argument naming the first option out of range: frames not in
+  // [1, 100000], size not within 16x16..2048x2048, objects not in [1, 3], noise_sigma not in
+  // [0, 64], illumination_drift not in [0, 0.5].
+  explicit SynthSequence(const SynthOptions& options);
+
+  int size() const;
+  // Random access: the result depends on the options and t only, never on earlier calls.
+  // Throws std::out_of_range unless 0 <= t < size().
+  SynthFrame frame(int t) const;
+  const SynthOptions& options() const;
+
+ private:
+  struct State;
+  std::shared_ptr<const State> state_;  // immutable once built, so copies share it
+};
+
+// Writes DIR/frames/00000.png ..., DIR/masks/00000.png ... and DIR/camera.jsonl (one line per
+// t >= 1: {"frame": t, "model": [[a,b,c],[d,e,f],[g,h,i]]}, frame t's camera), each file
+// atomically. Checks the options before creating anything. Throws std::runtime_error when a file
+// cannot be written.
+void writeSynthSequence(const std::string& dir, const SynthOptions& options);
+
+// "pan", "zoom", "rotate", "shake", "static" or "mix"; throws std::invalid_argument otherwise.
+SynthCamera parseSynthCamera(const std::string& name);
+std::string synthCameraName(SynthCamera camera);
+
+}  // namespace movseg

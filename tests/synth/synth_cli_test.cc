@@ -1,0 +1,81 @@
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "synth/synth.h"
+#include "test_support.h"
+
+namespace movseg {
+namespace {
+
+using test::runCli;
+using test::TempDir;
+
+TEST(SynthCli, WritesFramesMasksAndCameraModels) {
+  TempDir dir;
+  const std::string out = dir / "clip";
+  const auto result =
+      runCli("synth -o " + out + " --frames 5 --size 64x48 --seed 3 --camera pan --objects 1");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_EQ(result.output,
+            "synth: wrote 5 frames (64x48, camera pan, 1 object, seed 3) to " + out + "\n");
+
+  SynthOptions options;
+  options.frames = 5;
+  options.size = cv::Size(64, 48);
+  options.seed = 3;
+  options.camera = SynthCamera::kPan;
+  options.objects = 1;
+  const SynthSequence sequence(options);
+  for (int t = 0; t < 5; ++t) {
+    const std::string name = "0000" + std::to_string(t) + ".png";
+    const SynthFrame expected = sequence.frame(t);
+    const cv::Mat frame = cv::imread(out + "/frames/" + name, cv::IMREAD_UNCHANGED);
+    const cv::Mat mask = cv::imread(out + "/masks/" + name, cv::IMREAD_UNCHANGED);
+    ASSERT_FALSE(frame.empty()) << name;
+    ASSERT_FALSE(mask.empty()) << name;
+    EXPECT_EQ(cv::norm(frame, expected.frame, cv::NORM_INF), 0) << name;
+    EXPECT_EQ(cv::norm(mask, expected.mask, cv::NORM_INF), 0) << name;
+  }
+  EXPECT_FALSE(std::filesystem::exists(out + "/frames/00005.png"));
+
+  std::ifstream cameras(out + "/camera.jsonl");
+  std::string line;
+  int lines = 0;
+  while (std::getline(cameras, line)) {
+    ++lines;
+    const nlohmann::json entry = nlohmann::json::parse(line);
+    ASSERT_EQ(entry.at("frame").get<int>(), lines);
+    const auto& model = entry.at("model");
+    ASSERT_EQ(model.size(), 3u);
+    const cv::Matx33d expected = sequence.frame(lines).camera;
+    for (int r = 0; r < 3; ++r) {
+      ASSERT_EQ(model[r].size(), 3u);
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(model[r][c].get<double>(), expected(r, c));
+    }
+  }
+  EXPECT_EQ(lines, 4);
+}
+
+TEST(SynthCli, BadOptionsFailWithOneLine) {
+  TempDir dir;
+  const std::string out = dir / "clip";
+  for (const std::string bad : {"--size 10x10", "--size abc", "--objects 0", "--objects 4",
+                                "--frames 0", "--camera tilt", "--seed -1"}) {
+    const auto result = runCli("synth -o " + out + " " + bad);
+    EXPECT_NE(result.exit_code, 0) << bad;
+    EXPECT_EQ(result.output.rfind("movseg: error: ", 0), 0u) << bad << ": " << result.output;
+    EXPECT_EQ(result.output.find('\n'), result.output.size() - 1) << bad << ": " << result.output;
+    EXPECT_FALSE(std::filesystem::exists(out)) << bad << ": wrote files anyway";
+  }
+  const auto no_output = runCli("synth --frames 3");
+  EXPECT_NE(no_output.exit_code, 0);
+  EXPECT_EQ(no_output.output.rfind("movseg: error: ", 0), 0u) << no_output.output;
+}
+
+}  // namespace
+}  // namespace movseg

@@ -1,0 +1,313 @@
+#include "synth/synth.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+namespace movseg {
+namespace {
+
+constexpr SynthCamera kAllCameras[] = {SynthCamera::kPan,    SynthCamera::kZoom,
+                                       SynthCamera::kRotate, SynthCamera::kShake,
+                                       SynthCamera::kStatic, SynthCamera::kMix};
+
+SynthOptions makeOptions(SynthCamera camera, int frames, std::uint64_t seed = 1) {
+  SynthOptions options;
+  options.camera = camera;
+  options.frames = frames;
+  options.seed = seed;
+  return options;
+}
+
+bool sameBytes(const cv::Mat& a, const cv::Mat& b) {
+  return a.size() == b.size() && a.type() == b.type() && cv::norm(a, b, cv::NORM_INF) == 0;
+}
+
+bool touchesBorder(const cv::Mat& mask) {
+  const int w = mask.cols, h = mask.rows;
+  return cv::countNonZero(mask.row(0)) + cv::countNonZero(mask.row(h - 1)) +
+             cv::countNonZero(mask.col(0)) + cv::countNonZero(mask.col(w - 1)) >
+         0;
+}
+
+// Mean absolute difference, over channels, between `current` and `previous` warped by `model`
+// on the background both frames see: away from the image border and from either frame's objects.
+double alignmentError(const SynthFrame& previous, const SynthFrame& current,
+                      const cv::Matx33d& model) {
+  const cv::Size size = current.frame.size();
+  cv::Mat warped, warped_mask, seen;
+  cv::warpPerspective(previous.frame, warped, model, size, cv::INTER_LINEAR);
+  cv::warpPerspective(previous.mask, warped_mask, model, size, cv::INTER_NEAREST);
+  cv::warpPerspective(cv::Mat(previous.mask.size(), CV_8U, cv::Scalar(255)), seen, model, size,
+                      cv::INTER_NEAREST);
+  cv::erode(seen, seen, cv::Mat(), cv::Point(-1, -1), 2);
+  cv::Mat objects = warped_mask | current.mask;
+  cv::dilate(objects, objects, cv::Mat(), cv::Point(-1, -1), 2);
+  const cv::Mat background = seen & ~objects;
+  cv::Mat difference;
+  cv::absdiff(warped, current.frame, difference);
+  const cv::Scalar mean = cv::mean(difference, background);
+  return (mean[0] + mean[1] + mean[2]) / 3;
+}
+
+double maxDisplacement(const cv::Matx33d& model, cv::Size size) {
+  const double w = size.width - 1, h = size.height - 1;
+  double largest = 0;
+  for (const cv::Vec3d& p : {cv::Vec3d(0, 0, 1), cv::Vec3d(w, 0, 1), cv::Vec3d(0, h, 1),
+                             cv::Vec3d(w, h, 1), cv::Vec3d(w / 2, h / 2, 1)}) {
+    const cv::Vec3d q = model * p;
+    largest = std::max(largest, std::hypot(q[0] / q[2] - p[0], q[1] / q[2] - p[1]));
+  }
+  return largest;
+}
+
+TEST(Synth, SameSeedGivesIdenticalBytesInAnyOrder) {
+  const SynthOptions options = makeOptions(SynthCamera::kMix, 12, 7);
+  const SynthSequence a(options), b(options);
+  const SynthFrame late = b.frame(9);  // random access first: nothing may depend on call order
+  for (int t = 0; t < a.size(); ++t) {
+    const SynthFrame x = a.frame(t), y = t == 9 ? late : b.frame(t);
+    EXPECT_TRUE(sameBytes(x.frame, y.frame)) << "frame " << t;
+    EXPECT_TRUE(sameBytes(x.mask, y.mask)) << "frame " << t;
+    EXPECT_EQ(x.camera, y.camera) << "frame " << t;
+  }
+}
+
+TEST(Synth, DifferentSeedsGiveDifferentSequences) {
+  const SynthSequence a(makeOptions(SynthCamera::kMix, 3, 1)),
+      b(makeOptions(SynthCamera::kMix, 3, 2));
+  const SynthFrame x = a.frame(2), y = b.frame(2);
+  EXPECT_FALSE(sameBytes(x.frame, y.frame));
+  EXPECT_FALSE(sameBytes(x.mask, y.mask));
+  EXPECT_NE(x.camera, y.camera);
+}
+
+TEST(Synth, FramesAndMasksHaveTheDocumentedFormat) {
+  SynthOptions options = makeOptions(SynthCamera::kPan, 5);
+  options.size = cv::Size(200, 120);
+  const SynthSequence sequence(options);
+  ASSERT_EQ(sequence.size(), 5);
+  for (int t = 0; t < sequence.size(); ++t) {
+    const SynthFrame f = sequence.frame(t);
+    EXPECT_EQ(f.frame.type(), CV_8UC3);
+    EXPECT_EQ(f.frame.size(), options.size);
+    ASSERT_EQ(f.mask.type(), CV_8U);
+    EXPECT_EQ(f.mask.size(), options.size);
+    EXPECT_EQ(cv::countNonZero(f.mask == 0) + cv::countNonZero(f.mask == 255), f.mask.total())
+        << "mask values other than 0 and 255 in frame " << t;
+  }
+  EXPECT_EQ(sequence.frame(0).camera, cv::Matx33d::eye());
+  EXPECT_THROW(sequence.frame(5), std::out_of_range);
+  EXPECT_THROW(sequence.frame(-1), std::out_of_range);
+}
+
+// On black, an object pixel is exactly a non-black pixel: the mask can neither miss an object
+// pixel nor claim a background one. With the background drawn, the object pixels are unchanged.
+TEST(Synth, MaskIsExactlyWhereObjectsWereDrawn) {
+  SynthOptions options = makeOptions(SynthCamera::kMix, 40, 5);
+  options.objects = 3;
+  options.noise_sigma = 0;
+  SynthOptions on_black = options;
+  on_black.background = false;
+  const SynthSequence scene(options), objects_only(on_black);
+  int object_pixels = 0;
+  for (int t = 0; t < scene.size(); ++t) {
+    const SynthFrame full = scene.frame(t), bare = objects_only.frame(t);
+    std::vector<cv::Mat> channels;
+    cv::split(bare.frame, channels);
+    const cv::Mat drawn = (channels[0] | channels[1] | channels[2]) > 0;
+    EXPECT_EQ(cv::countNonZero(drawn != bare.mask), 0) << "frame " << t;
+    EXPECT_TRUE(sameBytes(full.mask, bare.mask)) << "frame " << t;
+    cv::Mat full_objects = cv::Mat::zeros(full.frame.size(), CV_8UC3);
+    full.frame.copyTo(full_objects, full.mask);
+    EXPECT_TRUE(sameBytes(full_objects, bare.frame)) << "frame " << t;
+    object_pixels += cv::countNonZero(bare.mask);
+  }
+  EXPECT_GT(object_pixels, 0);
+}
+
+// Warping frame t-1 by the true model reproduces frame t's background up to resampling (noise
+// off), and better than any model a quarter pixel off: the model is right to well under a pixel.
+TEST(Synth, CameraModelAlignsConsecutiveBackgrounds) {
+  const cv::Vec2d quarter_pixel_shifts[] = {{0.25, 0}, {-0.25, 0}, {0, 0.25}, {0, -0.25}};
+  for (const SynthCamera camera : kAllCameras) {
+    SynthOptions options = makeOptions(camera, 5, 11);
+    options.noise_sigma = 0;
+    const SynthSequence sequence(options);
+    SynthFrame previous = sequence.frame(0);
+    for (int t = 1; t < sequence.size(); ++t) {
+      const SynthFrame current = sequence.frame(t);
+      const double error = alignmentError(previous, current, current.camera);
+      EXPECT_LT(error, 2.0) << synthCameraName(camera) << " frame " << t;
+      for (const cv::Vec2d& shift : quarter_pixel_shifts) {
+        const cv::Matx33d off =
+            cv::Matx33d(1, 0, shift[0], 0, 1, shift[1], 0, 0, 1) * current.camera;
+        EXPECT_LT(error, alignmentError(previous, current, off))
+            << synthCameraName(camera) << " frame " << t << " shift " << shift;
+      }
+      previous = current;
+    }
+  }
+}
+
+TEST(Synth, CameraModelAlignsNoisyFramesToWithinNoise) {
+  const SynthSequence sequence(makeOptions(SynthCamera::kMix, 4, 12));
+  for (int t = 1; t < sequence.size(); ++t) {
+    const SynthFrame current = sequence.frame(t);
+    EXPECT_LT(alignmentError(sequence.frame(t - 1), current, current.camera), 4.0) << "frame " << t;
+  }
+}
+
+TEST(Synth, CameraMotionHasRealisticMagnitudes) {
+  for (const SynthCamera camera : kAllCameras) {
+    const SynthSequence sequence(makeOptions(camera, 60, 3));
+    double largest = 0, total = 0;
+    for (int t = 1; t < sequence.size(); ++t) {
+      const cv::Matx33d model = sequence.frame(t).camera;
+      if (camera == SynthCamera::kStatic) {
+        EXPECT_EQ(model, cv::Matx33d::eye());
+      }
+      const double moved = maxDisplacement(model, sequence.options().size);
+      largest = std::max(largest, moved);
+      total += moved;
+    }
+    EXPECT_LE(largest, 8.0) << synthCameraName(camera);
+    if (camera != SynthCamera::kStatic) {
+      EXPECT_GT(total / 59, 0.3) << synthCameraName(camera);
+    }
+  }
+}
+
+// The canvas holds everything any frame sees: a frame pixel outside it would come out black.
+TEST(Synth, BackgroundCoversEveryPixelOfEveryFrame) {
+  for (const SynthCamera camera : {SynthCamera::kPan, SynthCamera::kMix}) {
+    SynthOptions options = makeOptions(camera, 150, 4);
+    options.noise_sigma = 0;
+    const SynthSequence sequence(options);
+    for (int t = 0; t < sequence.size(); ++t) {
+      double darkest;
+      cv::minMaxLoc(sequence.frame(t).frame.reshape(1), &darkest);
+      ASSERT_GE(darkest, 15) << synthCameraName(camera) << " frame " << t;
+    }
+  }
+}
+
+// Corners (Shi–Tomasi, as the motion stage detects them) in every 80x80 cell of the frame.
+TEST(Synth, BackgroundIsTexturedEverywhere) {
+  const SynthSequence sequence(makeOptions(SynthCamera::kStatic, 1, 8));
+  cv::Mat grey;
+  cv::cvtColor(sequence.frame(0).frame, grey, cv::COLOR_BGR2GRAY);
+  std::vector<cv::Point2f> corners;
+  cv::goodFeaturesToTrack(grey, corners, 2000, 0.01, 4);
+  int counts[3][4] = {};
+  for (const cv::Point2f& p : corners)
+    ++counts[static_cast<int>(p.y) / 80][static_cast<int>(p.x) / 80];
+  for (int row = 0; row < 3; ++row) {
+    for (int col = 0; col < 4; ++col)
+      EXPECT_GE(counts[row][col], 8) << "cell " << row << "," << col;
+  }
+}
+
+TEST(Synth, ObjectsHaveTheSpecifiedSizesAndSpeeds) {
+  int whole_views = 0;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    SynthOptions options = makeOptions(SynthCamera::kStatic, 40, seed);
+    options.objects = 1;
+    options.background = false;
+    const SynthSequence sequence(options);
+    cv::Point2d last_centre(-1, -1);
+    for (int t = 0; t < sequence.size(); ++t) {
+      const cv::Mat mask = sequence.frame(t).mask;
+      if (touchesBorder(mask) || cv::countNonZero(mask) == 0) {
+        last_centre = cv::Point2d(-1, -1);
+        continue;
+      }
+      ++whole_views;
+      const double fraction = static_cast<double>(cv::countNonZero(mask)) / mask.total();
+      EXPECT_GE(fraction, 0.045) << "seed " << seed << " frame " << t;
+      EXPECT_LE(fraction, 0.255) << "seed " << seed << " frame " << t;
+      const cv::Moments m = cv::moments(mask, true);
+      const cv::Point2d centre(m.m10 / m.m00, m.m01 / m.m00);
+      if (last_centre.x >= 0) {
+        const double speed = cv::norm(centre - last_centre);
+        EXPECT_GE(speed, 0.7) << "seed " << seed << " frame " << t;
+        EXPECT_LE(speed, 6.5) << "seed " << seed << " frame " << t;
+      }
+      last_centre = centre;
+    }
+  }
+  EXPECT_GT(whole_views, 20);
+}
+
+TEST(Synth, ObjectsEnterAndLeaveTheFrame) {
+  SynthOptions options = makeOptions(SynthCamera::kMix, 200, 1);
+  options.background = false;
+  options.noise_sigma = 0;
+  const SynthSequence sequence(options);
+  int at_border = 0, with_objects = 0;
+  for (int t = 0; t < sequence.size(); ++t) {
+    const cv::Mat mask = sequence.frame(t).mask;
+    at_border += touchesBorder(mask);
+    with_objects += cv::countNonZero(mask) > 0;
+  }
+  EXPECT_GT(at_border, 0);
+  EXPECT_GT(with_objects, 100);
+}
+
+TEST(Synth, NoiseAndIlluminationFollowTheOptions) {
+  SynthOptions options = makeOptions(SynthCamera::kStatic, 150, 6);
+  options.noise_sigma = 0;
+  SynthOptions noisy = options;
+  noisy.noise_sigma = 2.5;
+  const SynthSequence clean(options), sensor(noisy);
+  cv::Mat difference;
+  cv::subtract(sensor.frame(0).frame, clean.frame(0).frame, difference, cv::noArray(), CV_32F);
+  cv::Scalar mean, deviation;
+  cv::meanStdDev(difference.reshape(1), mean, deviation);
+  EXPECT_NEAR(deviation[0], 2.5, 0.3);
+  // Gain relative to frame 0, on the background of both frames.
+  const SynthFrame first = clean.frame(0);
+  double largest_change = 0;
+  for (int t = 10; t < clean.size(); t += 10) {
+    const SynthFrame f = clean.frame(t);
+    const cv::Mat background = ~(first.mask | f.mask);
+    const double ratio = cv::mean(f.frame, background)[1] / cv::mean(first.frame, background)[1];
+    largest_change = std::max(largest_change, std::abs(ratio - 1));
+  }
+  EXPECT_GT(largest_change, 0.01);
+  EXPECT_LT(largest_change, 2 * options.illumination_drift + 0.005);
+}
+
+TEST(Synth, InvalidOptionsThrow) {
+  const auto throws = [](auto change) {
+    SynthOptions options;
+    change(options);
+    EXPECT_THROW(SynthSequence{options}, std::invalid_argument);
+  };
+  throws([](SynthOptions& o) { o.frames = 0; });
+  throws([](SynthOptions& o) { o.size = cv::Size(10, 10); });
+  throws([](SynthOptions& o) { o.size = cv::Size(320, 15); });
+  throws([](SynthOptions& o) { o.objects = 0; });
+  throws([](SynthOptions& o) { o.objects = 4; });
+  throws([](SynthOptions& o) { o.noise_sigma = -1; });
+  throws([](SynthOptions& o) { o.illumination_drift = 0.9; });
+  SynthOptions smallest;
+  smallest.size = cv::Size(16, 16);
+  smallest.frames = 1;
+  EXPECT_NO_THROW(SynthSequence{smallest}.frame(0));
+}
+
+TEST(Synth, CameraNamesRoundTrip) {
+  for (const SynthCamera camera : kAllCameras) {
+    EXPECT_EQ(parseSynthCamera(synthCameraName(camera)), camera);
+  }
+  EXPECT_EQ(parseSynthCamera("mix"), SynthCamera::kMix);
+  EXPECT_THROW(parseSynthCamera("tilt"), std::invalid_argument);
+  EXPECT_THROW(parseSynthCamera("Pan"), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace movseg
