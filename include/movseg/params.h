@@ -52,6 +52,9 @@ struct Params {
   // i.e. a fixed floor raised on noisy frames (see docs/design.md).
   double lambda = 400.0;
   double lambda_noise_factor = 6.0;
+  // Gaussian blur (sigma, segmentation-scale pixels) of both frames before eq. (4): sub-pixel
+  // misalignment on fine texture and sensor noise then no longer look like motion. 0 = none.
+  double difference_blur = 0.0;
   // K of eq. (5): clusters of each colour GMM, built by farthest-point clustering.
   int gmm_clusters = 5;
   // Refine F_f / F_b with the colour GMMs (eq. 5); off = plain eq. (3) classification.

@@ -70,6 +70,10 @@ PreparedFrame prepareFrame(const cv::Mat& bgr, const Params& params) {
   const cv::Size seg_size = scaledSize(bgr.size(), params.segmentation_width);
   f.seg_bgr = resizedTo(bgr, seg_size);
   f.seg_scale = static_cast<double>(seg_size.width) / bgr.cols;
+  f.seg_smooth = f.seg_bgr;
+  if (params.difference_blur > 0) {
+    cv::GaussianBlur(f.seg_bgr, f.seg_smooth, cv::Size(), params.difference_blur);
+  }
 
   const cv::Size align_size = scaledSize(bgr.size(), params.alignment_width);
   const cv::Mat& align_source = align_size == seg_size ? f.seg_bgr : bgr;

@@ -21,6 +21,7 @@ cv::Size scaledSize(cv::Size size, int width);
 struct PreparedFrame {
   cv::Mat bgr;                        // full resolution
   cv::Mat seg_bgr;                    // segmentation scale (may share data with bgr)
+  cv::Mat seg_smooth;                 // seg_bgr blurred by Params::difference_blur, for eq. (4)
   cv::Mat small_grey;                 // alignment scale
   std::vector<cv::Mat> pyramid;       // LK pyramid of small_grey (empty if too small to track)
   std::vector<cv::Point2f> features;  // edge and corner points of small_grey

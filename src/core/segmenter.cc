@@ -46,7 +46,8 @@ struct Segmenter::Impl {
   Params params;
   std::optional<PreparedFrame> previous;
   cv::Matx33d warm_model = cv::Matx33d::eye();  // alignment scale
-  cv::Mat compensated_previous;
+  // The previous frame and the model of the last pair, for compensatedPreviousFrame().
+  std::pair<cv::Mat, cv::Matx33d> last_pair;
   std::uint64_t pairs = 0;
 
   Result process(const cv::Mat& frame);
@@ -95,7 +96,8 @@ Result Segmenter::Impl::process(const cv::Mat& frame) {
   stage = Clock::now();
   const cv::Matx33d seg_model = rescaleModel(diag.model, cur.seg_scale);
   const cv::Mat difference =
-      compensatedDifference(previous->seg_bgr, cur.seg_bgr, seg_model, &compensated_previous);
+      compensatedDifference(previous->seg_smooth, cur.seg_smooth, seg_model);
+  last_pair = {previous->bgr, diag.model};
   if (params.debug_images) {
     result.debug["matches"] = drawMatches(cur.small_grey, motion);
     result.debug["difference"] = drawDifference(difference);
@@ -112,7 +114,7 @@ Result Segmenter::Impl::firstFrame(PreparedFrame cur, Result result) {
   for (const cv::Point2f& p : scaled(cur.features, 1.0 / cur.align_scale)) {
     result.features.push_back({p, FeatureLabel::kUnknown});
   }
-  compensated_previous.release();
+  last_pair.first.release();
   warm_model = cv::Matx33d::eye();
   previous = std::move(cur);
   return result;
@@ -178,11 +180,15 @@ Result Segmenter::process(const cv::Mat& frame) { return impl_->process(frame); 
 
 void Segmenter::reset() {
   impl_->previous.reset();
-  impl_->compensated_previous.release();
+  impl_->last_pair.first.release();
   impl_->warm_model = cv::Matx33d::eye();
 }
 
-cv::Mat Segmenter::compensatedPreviousFrame() const { return impl_->compensated_previous; }
+cv::Mat Segmenter::compensatedPreviousFrame() const {
+  const auto& [frame, model] = impl_->last_pair;
+  if (frame.empty() || !impl_->previous) return cv::Mat();
+  return warpPrevious(frame, impl_->previous->bgr, model);
+}
 
 const Params& Segmenter::params() const { return impl_->params; }
 

@@ -95,10 +95,8 @@ MotionEstimate estimateCameraMotion(const PreparedFrame& prev, const PreparedFra
   return result;
 }
 
-cv::Mat compensatedDifference(const cv::Mat& prev, const cv::Mat& cur, const cv::Matx33d& model,
-                              cv::Mat* warped_prev) {
-  // Pixels with no source in `prev` keep cur's value (BORDER_TRANSPARENT), so their d is 0.
-  cv::Mat warped = cur.clone();
+cv::Mat warpPrevious(const cv::Mat& prev, const cv::Mat& cur, const cv::Matx33d& model) {
+  cv::Mat warped = cur.clone();  // BORDER_TRANSPARENT leaves these values where prev has none
   if (isAffine(model)) {
     cv::warpAffine(prev, warped, cv::Mat(model).rowRange(0, 2), cur.size(), cv::INTER_LINEAR,
                    cv::BORDER_TRANSPARENT);
@@ -106,8 +104,12 @@ cv::Mat compensatedDifference(const cv::Mat& prev, const cv::Mat& cur, const cv:
     cv::warpPerspective(prev, warped, cv::Mat(model), cur.size(), cv::INTER_LINEAR,
                         cv::BORDER_TRANSPARENT);
   }
+  return warped;
+}
+
+cv::Mat compensatedDifference(const cv::Mat& prev, const cv::Mat& cur, const cv::Matx33d& model) {
   cv::Mat diff, squared, d;
-  cv::absdiff(cur, warped, diff);
+  cv::absdiff(cur, warpPrevious(prev, cur, model), diff);
   diff.convertTo(diff, CV_32F);
   cv::multiply(diff, diff, squared);
   if (cur.channels() == 1) {
@@ -115,7 +117,6 @@ cv::Mat compensatedDifference(const cv::Mat& prev, const cv::Mat& cur, const cv:
   } else {
     cv::transform(squared, d, cv::Matx13f(1.f / 3, 1.f / 3, 1.f / 3));
   }
-  if (warped_prev != nullptr) *warped_prev = warped;
   return d;
 }
 

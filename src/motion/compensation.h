@@ -30,11 +30,14 @@ MotionEstimate estimateCameraMotion(const PreparedFrame& prev, const PreparedFra
                                     const cv::Matx33d& warm, const Params& params,
                                     std::uint64_t seed);
 
+// I'(t) of eq. (4): `prev` warped by `model` (previous -> current, in these images' pixels)
+// onto `cur`'s grid; where `prev` has no pixel, `cur`'s own value stands in.
+cv::Mat warpPrevious(const cv::Mat& prev, const cv::Mat& cur, const cv::Matx33d& model);
+
 // Eq. (4) for every pixel: the mean over colour channels of the squared difference between
-// `cur` and `prev` warped by `model` (previous -> current, in these images' pixels). Pixels
-// that `prev` does not cover score 0. Returns CV_32F of cur's size.
-cv::Mat compensatedDifference(const cv::Mat& prev, const cv::Mat& cur, const cv::Matx33d& model,
-                              cv::Mat* warped_prev = nullptr);
+// `cur` and warpPrevious(prev, cur, model), so pixels `prev` does not cover score 0.
+// Returns CV_32F of cur's size.
+cv::Mat compensatedDifference(const cv::Mat& prev, const cv::Mat& cur, const cv::Matx33d& model);
 
 // Eq. (4) at the given points of `cur` only (3x3 patch mean), as the outer layer needs.
 std::vector<float> compensatedDifferenceAt(const cv::Mat& prev, const cv::Mat& cur,
