@@ -2,14 +2,15 @@
 #include "movseg/segmenter.h"
 
 #include <algorithm>
-#include <chrono>
-#include <optional>
 
 #include <opencv2/imgproc.hpp>
 
 #include "classify/classify.h"
 #include "classify/classify_debug.h"
+#include "core/camera_tracker.h"
 #include "core/frame.h"
+#include "core/timing.h"
+#include "methods/method_support.h"
 #include "cut/cut_debug.h"
 #include "cut/graph_cut.h"
 #include "motion/compensation.h"
@@ -19,12 +20,6 @@
 namespace movseg {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double millisecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
 std::vector<cv::Point2f> scaled(const std::vector<cv::Point2f>& points, double scale) {
   std::vector<cv::Point2f> out(points.size());
   const auto s = static_cast<float>(scale);
@@ -32,91 +27,49 @@ std::vector<cv::Point2f> scaled(const std::vector<cv::Point2f>& points, double s
   return out;
 }
 
-cv::Mat upscaledMask(const cv::Mat& mask, cv::Size size) {
-  if (mask.size() == size) return mask;
-  cv::Mat out;
-  cv::resize(mask, out, size, 0, 0, cv::INTER_LINEAR);
-  cv::threshold(out, out, 127, 255, cv::THRESH_BINARY);
-  return out;
-}
-
 }  // namespace
 
 struct Segmenter::Impl {
+  explicit Impl(const Params& p) : params(p), tracker(p) {}
   Params params;
-  std::optional<PreparedFrame> previous;
-  cv::Matx33d warm_model = cv::Matx33d::eye();  // alignment scale
+  CameraTracker tracker;
   // The previous frame and the model of the last pair, for compensatedPreviousFrame().
-  std::pair<cv::Mat, cv::Matx33d> last_pair;
-  std::uint64_t pairs = 0;
+  cv::Mat last_previous, last_current;
+  cv::Matx33d last_model = cv::Matx33d::eye();
 
   Result process(const cv::Mat& frame);
-  Result firstFrame(PreparedFrame cur, Result result);
   void classifyAndCut(const PreparedFrame& cur, const cv::Mat& difference, Result* result);
 };
 
 Result Segmenter::Impl::process(const cv::Mat& frame) {
   const Clock::time_point start = Clock::now();
-  const cv::Mat bgr = toBgr8(frame);
   Result result;
   Diagnostics& diag = result.diagnostics;
-  if (previous && previous->bgr.size() != bgr.size()) {
-    previous.reset();
-    diag.reset = true;
-  }
-  PreparedFrame cur = prepareFrame(bgr, params);
-  diag.timings.prepare_ms = millisecondsSince(start);
-  if (!previous) {
-    result = firstFrame(std::move(cur), std::move(result));
-    result.diagnostics.timings.total_ms = millisecondsSince(start);
+  const CameraTracker::Step step = tracker.advance(toBgr8(frame), &diag);  // §3.1
+  const PreparedFrame& cur = *step.current;
+  last_current = cur.bgr;
+  if (step.previous == nullptr) {
+    result.mask = cv::Mat::zeros(cur.bgr.size(), CV_8U);
+    for (const cv::Point2f& p : scaled(cur.features, 1.0 / cur.align_scale)) {
+      result.features.push_back({p, FeatureLabel::kUnknown});
+    }
+    last_previous.release();
+    diag.timings.total_ms = millisecondsSince(start);
     return result;
   }
-
-  // §3.1 camera motion compensation.
-  Clock::time_point stage = Clock::now();
-  MotionEstimate motion;
-  if (!params.static_camera) {
-    motion = estimateCameraMotion(*previous, cur, warm_model, params, params.seed + pairs);
-    if (!motion.fallback) warm_model = motion.model;
-  }
-  ++pairs;
-  diag.model = rescaleModel(motion.model, 1.0 / cur.align_scale);
-  diag.model_is_affine = isAffine(diag.model);
-  diag.features = motion.features;
-  diag.tracks = motion.tracks;
-  diag.matches = static_cast<int>(motion.matches.size());
-  diag.background_matches =
-      static_cast<int>(std::count(motion.background.begin(), motion.background.end(), 1));
-  diag.foreground_matches = diag.matches - diag.background_matches;
-  diag.outer_iterations = motion.outer_iterations;
-  diag.motion_fallback = motion.fallback && !params.static_camera;
-  diag.timings.motion_ms = millisecondsSince(stage);
+  last_previous = step.previous->bgr;
+  last_model = diag.model;
 
   // Eq. (4) at the segmentation scale.
-  stage = Clock::now();
   const cv::Matx33d seg_model = rescaleModel(diag.model, cur.seg_scale);
   const cv::Mat difference =
-      compensatedDifference(previous->seg_smooth, cur.seg_smooth, seg_model);
-  last_pair = {previous->bgr, diag.model};
+      compensatedDifference(step.previous->seg_smooth, cur.seg_smooth, seg_model);
   if (params.debug_images) {
-    result.debug["matches"] = drawMatches(cur.small_grey, motion);
+    result.debug["matches"] = drawMatches(cur.small_grey, step.motion);
     result.debug["difference"] = drawDifference(difference);
   }
   classifyAndCut(cur, difference, &result);
   diag.timings.total_ms = millisecondsSince(start);
-  previous = std::move(cur);
-  return result;
-}
-
-Result Segmenter::Impl::firstFrame(PreparedFrame cur, Result result) {
-  result.diagnostics.first_frame = true;
-  result.mask = cv::Mat::zeros(cur.bgr.size(), CV_8U);
-  for (const cv::Point2f& p : scaled(cur.features, 1.0 / cur.align_scale)) {
-    result.features.push_back({p, FeatureLabel::kUnknown});
-  }
-  last_pair.first.release();
-  warm_model = cv::Matx33d::eye();
-  previous = std::move(cur);
   return result;
 }
 
@@ -168,9 +121,9 @@ void Segmenter::Impl::classifyAndCut(const PreparedFrame& cur, const cv::Mat& di
   diag.timings.cut_ms = millisecondsSince(stage);
 }
 
-Segmenter::Segmenter(const Params& params) : impl_(std::make_unique<Impl>()) {
+Segmenter::Segmenter(const Params& params) {
   params.check();
-  impl_->params = params;
+  impl_ = std::make_unique<Impl>(params);
 }
 Segmenter::~Segmenter() = default;
 Segmenter::Segmenter(Segmenter&&) noexcept = default;
@@ -179,15 +132,13 @@ Segmenter& Segmenter::operator=(Segmenter&&) noexcept = default;
 Result Segmenter::process(const cv::Mat& frame) { return impl_->process(frame); }
 
 void Segmenter::reset() {
-  impl_->previous.reset();
-  impl_->last_pair.first.release();
-  impl_->warm_model = cv::Matx33d::eye();
+  impl_->tracker.reset();
+  impl_->last_previous.release();
 }
 
 cv::Mat Segmenter::compensatedPreviousFrame() const {
-  const auto& [frame, model] = impl_->last_pair;
-  if (frame.empty() || !impl_->previous) return cv::Mat();
-  return warpPrevious(frame, impl_->previous->bgr, model);
+  if (impl_->last_previous.empty()) return cv::Mat();
+  return warpPrevious(impl_->last_previous, impl_->last_current, impl_->last_model);
 }
 
 const Params& Segmenter::params() const { return impl_->params; }

@@ -1,6 +1,10 @@
 #include "methods/method.h"
 
+#include <functional>
 #include <stdexcept>
+#include <utility>
+
+#include "methods/baselines.h"
 
 namespace movseg {
 namespace {
@@ -15,12 +19,30 @@ class PaperMethod : public Method {
   Segmenter segmenter_;
 };
 
+using Factory = std::function<std::unique_ptr<Method>(const Params&)>;
+
+const std::vector<std::pair<std::string, Factory>>& registry() {
+  static const std::vector<std::pair<std::string, Factory>> methods{
+      {"paper", [](const Params& p) { return std::make_unique<PaperMethod>(p); }},
+      {"diff", makeDiffMethod},
+      {"mog2", makeMog2Method},
+      {"mog2-comp", makeCompensatedMog2Method},
+  };
+  return methods;
+}
+
 }  // namespace
 
-std::vector<std::string> methodNames() { return {"paper"}; }
+std::vector<std::string> methodNames() {
+  std::vector<std::string> names;
+  for (const auto& [name, factory] : registry()) names.push_back(name);
+  return names;
+}
 
 std::unique_ptr<Method> makeMethod(const std::string& name, const Params& params) {
-  if (name == "paper") return std::make_unique<PaperMethod>(params);
+  for (const auto& [known, factory] : registry()) {
+    if (known == name) return factory(params);
+  }
   throw std::invalid_argument("unknown method '" + name + "'");
 }
 

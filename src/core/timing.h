@@ -1,0 +1,14 @@
+// Wall-clock timing of the stages, for Diagnostics::timings.
+#pragma once
+
+#include <chrono>
+
+namespace movseg {
+
+using Clock = std::chrono::steady_clock;
+
+inline double millisecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+}  // namespace movseg
