@@ -10,5 +10,6 @@ void addSegmentCommand(CLI::App& app);
 void addSynthCommand(CLI::App& app);
 void addDemoCommand(CLI::App& app);
 void addEvalCommand(CLI::App& app);
+void addBenchCommand(CLI::App& app);
 
 }  // namespace movseg::cli

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   movseg::cli::addSynthCommand(app);
   movseg::cli::addDemoCommand(app);
   movseg::cli::addEvalCommand(app);
+  movseg::cli::addBenchCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

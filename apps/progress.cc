@@ -8,8 +8,9 @@ namespace movseg::cli {
 
 using Clock = std::chrono::steady_clock;
 
-Progress::Progress(std::string label, int total, bool quiet)
+Progress::Progress(std::string label, int total, bool quiet, std::string unit)
     : label_(std::move(label)),
+      unit_(std::move(unit)),
       total_(total),
       quiet_(quiet),
       terminal_(isatty(fileno(stderr)) != 0),
@@ -26,16 +27,17 @@ void Progress::update(int done) {
   const double seconds = std::chrono::duration<double>(now - start_).count();
   const double fps = seconds > 0 ? done / seconds : 0;
   if (!terminal_) {
-    std::fprintf(stderr, "%s: %d frames, %.1f fps\n", label_.c_str(), done, fps);
+    std::fprintf(stderr, "%s: %d %s, %.1f per second\n", label_.c_str(), done, unit_.c_str(), fps);
     return;
   }
   if (total_ > 0) {
     constexpr int kWidth = 30;
     const int filled = done * kWidth / total_;
-    std::fprintf(stderr, "\r%s [%.*s%*s] %d/%d %.1f fps ", label_.c_str(), filled,
-                 "##############################", kWidth - filled, "", done, total_, fps);
+    std::fprintf(stderr, "\r%s [%.*s%*s] %d/%d %s, %.1f per second ", label_.c_str(), filled,
+                 "##############################", kWidth - filled, "", done, total_,
+                 unit_.c_str(), fps);
   } else {
-    std::fprintf(stderr, "\r%s %d frames %.1f fps ", label_.c_str(), done, fps);
+    std::fprintf(stderr, "\r%s %d %s, %.1f per second ", label_.c_str(), done, unit_.c_str(), fps);
   }
   std::fflush(stderr);
 }

@@ -8,13 +8,13 @@ namespace movseg::cli {
 
 class Progress {
  public:
-  // total < 0 when unknown (camera, stream).
-  Progress(std::string label, int total, bool quiet = false);
+  // total < 0 when unknown (camera, stream); `unit` names what is counted.
+  Progress(std::string label, int total, bool quiet = false, std::string unit = "frames");
   void update(int done);
   void finish();
 
  private:
-  std::string label_;
+  std::string label_, unit_;
   int total_;
   bool quiet_;
   bool terminal_;

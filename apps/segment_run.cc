@@ -181,6 +181,13 @@ void writeDebugPictures(const std::string& folder, int index, const Result& resu
   }
 }
 
+cv::Mat resizedFrame(const cv::Mat& frame, cv::Size size) {
+  if (size.empty() || frame.size() == size) return frame;
+  cv::Mat out;
+  cv::resize(frame, out, size, 0, 0, cv::INTER_AREA);
+  return out;
+}
+
 }  // namespace
 
 double median(std::vector<double> values) {
@@ -216,9 +223,12 @@ SegmentSummary runSegmentation(const SegmentOptions& options) {
     const int index = summary.frames;
     Result result;
     try {
-      result = method->process(frame);
+      result = method->process(resizedFrame(frame, options.resize));
     } catch (const std::invalid_argument& e) {
       throw std::runtime_error(source->describe() + ": " + e.what());
+    }
+    if (result.mask.size() != frame.size()) {
+      cv::resize(result.mask, result.mask, frame.size(), 0, 0, cv::INTER_NEAREST);
     }
     summary.frame_ms.push_back(result.diagnostics.timings.total_ms);
     summary.resets += result.diagnostics.reset;

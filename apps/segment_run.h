@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include <opencv2/core.hpp>
+
 #include "movseg/params.h"
 
 namespace movseg::cli {
@@ -18,6 +20,8 @@ struct SegmentOptions {
   std::string method = "paper";
   Params params;
   bool quiet = false;         // no progress, no summary line
+  cv::Size resize;            // non-empty: frames are resized to this before segmentation and
+                              // the masks back to the frame's own size (bench --size)
 };
 
 struct SegmentSummary {

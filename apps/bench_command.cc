@@ -1,0 +1,177 @@
+// movseg bench DATA [--methods paper,diff,mog2,mog2-comp] [--size WxH] [--json FILE]
+// Every method on every sequence of DATA: accuracy against the ground truth and speed, in one
+// table (the README's tables come from here).
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "commands.h"
+#include "eval/dataset.h"
+#include "io/atomic_write.h"
+#include "methods/method.h"
+#include "params_options.h"
+#include "progress.h"
+#include "segment_run.h"
+
+namespace movseg::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct BenchOptions {
+  std::string data;
+  std::vector<std::string> methods = methodNames();
+  std::string size;  // "WxH" or empty (native)
+  std::string json_file;
+  Params params;
+};
+
+struct BenchRow {
+  std::string sequence, method;
+  ScoreSummary score;
+  double ms_per_frame = 0;  // median process() wall time
+};
+
+cv::Size parseSize(const std::string& text) {
+  if (text.empty()) return {};
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  std::istringstream in(text);
+  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || (in >> extra) || w < 1 || h < 1 ||
+      w > 8192 || h > 8192) {
+    throw std::runtime_error("--size must be WxH with 1 <= W, H <= 8192, got '" + text + "'");
+  }
+  return {w, h};
+}
+
+// The CPU, for the table's header: benchmarks only compare on the same machine.
+std::string cpuModel() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(cpuinfo, line)) {
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  }
+  return "unknown CPU";
+}
+
+BenchRow benchOne(const GtSequence& sequence, const std::string& method, const BenchOptions& options,
+                  const std::string& scratch) {
+  SegmentOptions segment;
+  segment.input = sequence.frames_dir;
+  segment.output_dir = (fs::path(scratch) / method / sequence.name).string();
+  segment.method = method;
+  segment.params = options.params;
+  segment.quiet = true;
+  segment.resize = parseSize(options.size);
+  const SegmentSummary summary = runSegmentation(segment);
+  BenchRow row{sequence.name, method, summarize(scoreSequence(sequence, segment.output_dir)),
+               median(summary.frame_ms)};
+  fs::remove_all(segment.output_dir);
+  return row;
+}
+
+std::string formatRows(const std::vector<BenchRow>& rows) {
+  std::string text;
+  char line[200];
+  std::snprintf(line, sizeof line, "%-22s %-10s %6s %6s %8s %9s %8s\n", "sequence", "method",
+                "J", "F", "error %", "ms/frame", "fps");
+  text += line;
+  for (const BenchRow& r : rows) {
+    std::snprintf(line, sizeof line, "%-22s %-10s %6.3f %6.3f %8.2f %9.2f %8.1f\n",
+                  r.sequence.c_str(), r.method.c_str(), r.score.j, r.score.f, r.score.error_rate,
+                  r.ms_per_frame, r.ms_per_frame > 0 ? 1000.0 / r.ms_per_frame : 0.0);
+    text += line;
+  }
+  return text;
+}
+
+// One mean row per method, each sequence weighing the same.
+std::vector<BenchRow> meanRows(const std::vector<BenchRow>& rows, const BenchOptions& options) {
+  std::vector<BenchRow> means;
+  for (const std::string& method : options.methods) {
+    std::vector<ScoreSummary> scores;
+    std::vector<double> ms;
+    for (const BenchRow& r : rows) {
+      if (r.method != method) continue;
+      scores.push_back(r.score);
+      ms.push_back(r.ms_per_frame);
+    }
+    double mean_ms = 0;
+    for (double m : ms) mean_ms += m / static_cast<double>(ms.size());
+    means.push_back({"MEAN", method, meanOverSequences(scores, "MEAN"), mean_ms});
+  }
+  return means;
+}
+
+nlohmann::json rowsJson(const std::vector<BenchRow>& rows) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const BenchRow& r : rows) {
+    out.push_back({{"sequence", r.sequence}, {"method", r.method}, {"frames", r.score.frames},
+                   {"J", r.score.j}, {"J_recall", r.score.j_recall}, {"F", r.score.f},
+                   {"error_rate", r.score.error_rate}, {"ms_per_frame", r.ms_per_frame}});
+  }
+  return out;
+}
+
+void runBench(const BenchOptions& options) {
+  for (const std::string& method : options.methods) makeMethod(method, options.params);  // validate
+  const std::vector<GtSequence> sequences = loadGroundTruth(options.data, GtFormat::kAuto);
+  for (const GtSequence& s : sequences) {
+    if (s.frames_dir.empty()) {
+      throw std::runtime_error("sequence '" + s.name + "' has no frames folder to segment");
+    }
+  }
+  const std::string scratch =
+      (fs::temp_directory_path() / ("movseg-bench-" + std::to_string(::getpid()))).string();
+  std::vector<BenchRow> rows;
+  Progress progress("bench", static_cast<int>(sequences.size() * options.methods.size()), false,
+                    "runs");
+  for (const GtSequence& sequence : sequences) {
+    for (const std::string& method : options.methods) {
+      rows.push_back(benchOne(sequence, method, options, scratch));
+      progress.update(static_cast<int>(rows.size()));
+    }
+  }
+  progress.finish();
+  fs::remove_all(scratch);
+  const std::vector<BenchRow> means = meanRows(rows, options);
+  std::cout << "movseg bench on " << cpuModel() << ", one thread"
+            << (options.size.empty() ? ", native size" : ", frames resized to " + options.size)
+            << "\n" << formatRows(rows) << formatRows(means).substr(formatRows({}).size())
+            << "J, F, error: means over frames after the first of each sequence (it has no "
+               "previous frame); MEAN rows: each sequence weighs the same; ms/frame: median "
+               "per-frame time of the method (MEAN: mean of the medians).\n";
+  if (!options.json_file.empty()) {
+    const nlohmann::json report{{"cpu", cpuModel()}, {"size", options.size},
+                                {"rows", rowsJson(rows)}, {"means", rowsJson(means)}};
+    writeTextAtomic(options.json_file, report.dump(2) + "\n");
+  }
+}
+
+}  // namespace
+
+void addBenchCommand(CLI::App& app) {
+  auto options = std::make_shared<BenchOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "bench", "Accuracy and speed of every method on every sequence of a dataset");
+  cmd->add_option("DATA", options->data,
+                  "Dataset folder (<sequence>/frames + <sequence>/masks, or a single sequence)")
+      ->required();
+  cmd->add_option("--methods", options->methods, "Comma-separated methods")
+      ->delimiter(',')
+      ->check(CLI::IsMember(methodNames()));
+  cmd->add_option("--size", options->size, "Resize frames to WxH before segmenting");
+  cmd->add_option("--json", options->json_file, "Write the table as JSON");
+  addParamsOptions(cmd, &options->params);
+  cmd->callback([options] { runBench(*options); });
+}
+
+}  // namespace movseg::cli
