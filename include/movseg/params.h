@@ -26,7 +26,7 @@ struct Params {
   // so that textured regions do not hog the features.
   int edge_cell = 16;
   // Pyramid Lucas–Kanade (ref. [16]): window side and pyramid levels above the base.
-  int lk_window = 15;
+  int lk_window = 11;
   int lk_levels = 3;
   // ZNCC window side t of eq. (2). Tracks with ZNCC < eta1 are dropped; eta1 is the median
   // ZNCC of the pair's tracks (the paper's rule). Likewise eta2 = median forward–backward

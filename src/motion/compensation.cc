@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "motion/model.h"
+#include "motion/patch.h"
 #include "motion/ransac.h"
 
 namespace movseg {
@@ -124,14 +125,14 @@ std::vector<float> compensatedDifferenceAt(const cv::Mat& prev, const cv::Mat& c
                                            const cv::Matx33d& model,
                                            const std::vector<cv::Point2f>& cur_points) {
   const cv::Matx33d inverse = model.inv();
-  const cv::Size patch(3, 3);
   std::vector<float> d(cur_points.size());
-  cv::Mat a, b, diff;
+  float a[9], b[9];
   for (size_t i = 0; i < cur_points.size(); ++i) {
-    cv::getRectSubPix(cur, patch, cur_points[i], a, CV_32F);
-    cv::getRectSubPix(prev, patch, applyModel(inverse, cur_points[i]), b, CV_32F);
-    cv::subtract(a, b, diff);
-    d[i] = static_cast<float>(diff.dot(diff) / (diff.total() * diff.channels()));
+    samplePatch(cur, cur_points[i], 3, a);
+    samplePatch(prev, applyModel(inverse, cur_points[i]), 3, b);
+    float sum = 0;
+    for (int k = 0; k < 9; ++k) sum += (a[k] - b[k]) * (a[k] - b[k]);
+    d[i] = sum / 9.f;
   }
   return d;
 }

@@ -1,6 +1,7 @@
 #include "motion/tracking.h"
 
 #include "motion/model.h"
+#include "motion/patch.h"
 
 #include <algorithm>
 #include <cmath>
@@ -57,15 +58,25 @@ std::vector<Track> trackForwardBackward(const std::vector<cv::Mat>& prev_pyramid
 
 float zncc(const cv::Mat& image_a, cv::Point2f a, const cv::Mat& image_b, cv::Point2f b,
            int window) {
-  cv::Mat patch_a, patch_b;
-  cv::getRectSubPix(image_a, cv::Size(window, window), a, patch_a, CV_32F);
-  cv::getRectSubPix(image_b, cv::Size(window, window), b, patch_b, CV_32F);
-  const cv::Scalar mean_a = cv::mean(patch_a), mean_b = cv::mean(patch_b);
-  patch_a -= mean_a;
-  patch_b -= mean_b;
-  const double energy = patch_a.dot(patch_a) * patch_b.dot(patch_b);
+  const int n = window * window;
+  std::vector<float> buffer(2 * static_cast<size_t>(n));
+  float* pa = buffer.data();
+  float* pb = pa + n;
+  samplePatch(image_a, a, window, pa);
+  samplePatch(image_b, b, window, pb);
+  double sum_a = 0, sum_b = 0;
+  for (int i = 0; i < n; ++i) sum_a += pa[i], sum_b += pb[i];
+  const double mean_a = sum_a / n, mean_b = sum_b / n;
+  double cross = 0, energy_a = 0, energy_b = 0;
+  for (int i = 0; i < n; ++i) {
+    const double da = pa[i] - mean_a, db = pb[i] - mean_b;
+    cross += da * db;
+    energy_a += da * da;
+    energy_b += db * db;
+  }
+  const double energy = energy_a * energy_b;
   if (energy <= 1e-12) return 0.0f;
-  return static_cast<float>(patch_a.dot(patch_b) / std::sqrt(energy));
+  return static_cast<float>(cross / std::sqrt(energy));
 }
 
 std::vector<Track> filterTracks(const std::vector<Track>& tracks) {
