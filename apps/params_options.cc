@@ -63,7 +63,7 @@ void setParam(Params* params, const std::string& assignment) {
       {"max_outer_iterations", [&] { params->max_outer_iterations = integer(); }},
       {"warm_start", [&] { params->warm_start = boolean(); }},
       {"lambda", [&] { params->lambda = number(); }},
-      {"lambda_noise_factor", [&] { params->lambda_noise_factor = number(); }},
+      {"lambda_residual_factor", [&] { params->lambda_residual_factor = number(); }},
       {"difference_blur", [&] { params->difference_blur = number(); }},
       {"gmm_clusters", [&] { params->gmm_clusters = integer(); }},
       {"gmm_refine", [&] { params->gmm_refine = boolean(); }},

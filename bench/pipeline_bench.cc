@@ -7,6 +7,7 @@
 #include <opencv2/core/utility.hpp>
 
 #include "classify/classify.h"
+#include "core/camera_tracker.h"
 #include "core/frame.h"
 #include "cut/geodesic.h"
 #include "cut/graph_cut.h"
@@ -44,7 +45,7 @@ struct StageInputs {
     motion = estimateCameraMotion(prev, cur, cv::Matx33d::eye(), params, 0);
     const double s = cur.seg_scale / cur.align_scale;
     difference = compensatedDifference(prev.seg_smooth, cur.seg_smooth, rescaleModel(motion.model, s));
-    const double lambda = chooseLambda(difference, params);
+    const double lambda = chooseLambda(difference, staticPoints(motion, cur, cur.seg_scale), params);
     std::vector<cv::Point2f> points;
     for (const cv::Point2f& p : cur.features) points.push_back(p * static_cast<float>(s));
     const std::vector<FeatureLabel> labels = classifyByDifference(difference, points, lambda);

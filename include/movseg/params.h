@@ -24,7 +24,7 @@ struct Params {
   int max_corners = 200;
   // Edge features: at most one Canny edge point per cell of this many pixels (alignment scale),
   // so that textured regions do not hog the features.
-  int edge_cell = 16;
+  int edge_cell = 8;
   // Pyramid Lucas–Kanade (ref. [16]): window side and pyramid levels above the base.
   int lk_window = 11;
   int lk_levels = 3;
@@ -48,10 +48,11 @@ struct Params {
   // ---- §3.2 feature classification -----------------------------------------------------
   // lambda of eq. (3): a point is foreground when the compensated difference d (eq. 4, here the
   // mean squared difference over the colour channels, 8-bit units) exceeds
-  //   max(lambda, lambda_noise_factor * median(d)),
-  // i.e. a fixed floor raised on noisy frames (see docs/design.md).
-  double lambda = 400.0;
-  double lambda_noise_factor = 6.0;
+  //   max(lambda, lambda_residual_factor * q75),
+  // q75 being the upper quartile of d at the background matches S_b: a floor, raised where the
+  // alignment leaves residuals on static texture (parallax, blur, compression; docs/design.md).
+  double lambda = 100.0;
+  double lambda_residual_factor = 2.0;
   // Gaussian blur (sigma, segmentation-scale pixels) of both frames before eq. (4): sub-pixel
   // misalignment on fine texture and sensor noise then no longer look like motion. 0 = none.
   double difference_blur = 0.0;
@@ -62,10 +63,10 @@ struct Params {
 
   // ---- §3.3 geodesic graph cut ---------------------------------------------------------
   // lambda of eq. (6): weight of the pairwise term against the unary term.
-  double cut_weight = 1.0;
+  double cut_weight = 0.3;
   // Colour term of the geodesic metric: a step costs sqrt(1 + (gamma * |dC|)^2) pixels with
   // colours in [0, 1] (docs/design.md).
-  double geodesic_gamma = 40.0;
+  double geodesic_gamma = 150.0;
   // Max-flow only near the boundary of the geodesic labelling (D_F < D_B): pixels farther than
   // this (segmentation-scale pixels) keep that label. 0 = the whole image (the exact minimum).
   int cut_band = 8;

@@ -6,17 +6,25 @@
 
 namespace movseg {
 
-double chooseLambda(const cv::Mat& difference, const Params& params) {
-  // Median over a regular subsample: exact enough, and O(n / 16).
+namespace {
+
+float differenceAt(const cv::Mat& difference, cv::Point2f p) {
+  const int x = std::clamp(cvRound(p.x), 0, difference.cols - 1);
+  const int y = std::clamp(cvRound(p.y), 0, difference.rows - 1);
+  return difference.at<float>(y, x);
+}
+
+}  // namespace
+
+double chooseLambda(const cv::Mat& difference, const std::vector<cv::Point2f>& static_points,
+                    const Params& params) {
+  if (static_points.empty()) return params.lambda;
   std::vector<float> values;
-  for (int y = 0; y < difference.rows; y += 4) {
-    const float* row = difference.ptr<float>(y);
-    for (int x = 0; x < difference.cols; x += 4) values.push_back(row[x]);
-  }
-  if (values.empty()) return params.lambda;
-  const auto mid = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), mid, values.end());
-  return std::max(params.lambda, params.lambda_noise_factor * static_cast<double>(*mid));
+  values.reserve(static_points.size());
+  for (const cv::Point2f& p : static_points) values.push_back(differenceAt(difference, p));
+  const auto q75 = values.begin() + static_cast<std::ptrdiff_t>(values.size() * 3 / 4);
+  std::nth_element(values.begin(), q75, values.end());
+  return std::max(params.lambda, params.lambda_residual_factor * static_cast<double>(*q75));
 }
 
 std::vector<FeatureLabel> classifyByDifference(const cv::Mat& difference,
@@ -25,10 +33,8 @@ std::vector<FeatureLabel> classifyByDifference(const cv::Mat& difference,
   std::vector<FeatureLabel> labels;
   labels.reserve(points.size());
   for (const cv::Point2f& p : points) {
-    const int x = std::clamp(cvRound(p.x), 0, difference.cols - 1);
-    const int y = std::clamp(cvRound(p.y), 0, difference.rows - 1);
-    labels.push_back(difference.at<float>(y, x) > lambda ? FeatureLabel::kForeground
-                                                         : FeatureLabel::kBackground);
+    labels.push_back(differenceAt(difference, p) > lambda ? FeatureLabel::kForeground
+                                                          : FeatureLabel::kBackground);
   }
   return labels;
 }

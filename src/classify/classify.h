@@ -11,8 +11,10 @@
 
 namespace movseg {
 
-// The threshold of eq. (3) for one difference image: max(lambda, lambda_noise_factor * median d).
-double chooseLambda(const cv::Mat& difference, const Params& params);
+// The threshold of eq. (3) for one difference image: max(lambda, lambda_residual_factor * q75)
+// where q75 is the upper quartile of d at `static_points` (points believed to be background).
+double chooseLambda(const cv::Mat& difference, const std::vector<cv::Point2f>& static_points,
+                    const Params& params);
 
 // Eq. (3): foreground where d > lambda, background otherwise (d sampled at each point).
 std::vector<FeatureLabel> classifyByDifference(const cv::Mat& difference,

@@ -22,6 +22,20 @@ void describeMotion(const MotionEstimate& motion, double align_scale, Diagnostic
 
 }  // namespace
 
+std::vector<cv::Point2f> staticPoints(const MotionEstimate& motion, const PreparedFrame& current,
+                                      double scale) {
+  const auto s = static_cast<float>(scale / current.align_scale);
+  std::vector<cv::Point2f> points;
+  for (size_t i = 0; i < motion.matches.size(); ++i) {
+    if (motion.background[i]) points.push_back(motion.matches[i].cur * s);
+  }
+  if (points.empty() || motion.fallback) {
+    points.clear();
+    for (const cv::Point2f& p : current.features) points.push_back(p * s);
+  }
+  return points;
+}
+
 CameraTracker::CameraTracker(const Params& params) : params_(params) {}
 
 CameraTracker::Step CameraTracker::advance(const cv::Mat& bgr, Diagnostics* diag) {

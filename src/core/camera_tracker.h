@@ -15,6 +15,12 @@
 
 namespace movseg {
 
+// Where the pair's static scene is seen in the current frame, in pixels of a frame scaled by
+// `scale` from full resolution: the background matches S_b, or (static camera, failed
+// alignment) the current frame's features, most of which lie on the background.
+std::vector<cv::Point2f> staticPoints(const MotionEstimate& motion, const PreparedFrame& current,
+                                      double scale);
+
 class CameraTracker {
  public:
   explicit CameraTracker(const Params& params);

@@ -25,7 +25,7 @@ void Params::check() const {
   require(ransac_grid >= 1 && ransac_grid <= 16, "ransac_grid must be in [1, 16]");
   require(max_outer_iterations >= 1, "max_outer_iterations must be >= 1");
   require(lambda >= 0, "lambda must be >= 0");
-  require(lambda_noise_factor >= 0, "lambda_noise_factor must be >= 0");
+  require(lambda_residual_factor >= 0, "lambda_residual_factor must be >= 0");
   require(difference_blur >= 0 && difference_blur <= 20, "difference_blur must be in [0, 20]");
   require(gmm_clusters >= 1, "gmm_clusters (K) must be >= 1");
   require(cut_weight >= 0, "cut_weight must be >= 0");

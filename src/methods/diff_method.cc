@@ -22,7 +22,7 @@ class DiffMethod : public Method {
     } else {
       const cv::Matx33d model = rescaleModel(diag.model, cur.seg_scale);
       const cv::Mat d = compensatedDifference(step.previous->seg_smooth, cur.seg_smooth, model);
-      diag.lambda = chooseLambda(d, params_);
+      diag.lambda = chooseLambda(d, staticPoints(step.motion, cur, cur.seg_scale), params_);
       result.mask = upscaledMask(d > diag.lambda, cur.bgr.size());
     }
     diag.timings.total_ms = millisecondsSince(start);

@@ -17,12 +17,15 @@ TEST(Classify, Equation3ThresholdsTheDifferenceAtThePoints) {
   EXPECT_EQ(labels[1], FeatureLabel::kBackground);
 }
 
-TEST(Classify, LambdaRisesWithTheNoiseFloor) {
+TEST(Classify, LambdaRisesWithTheResidualOnStaticPoints) {
   Params params;
-  const cv::Mat quiet(40, 40, CV_32F, cv::Scalar(5));
-  const cv::Mat noisy(40, 40, CV_32F, cv::Scalar(200));
-  EXPECT_DOUBLE_EQ(chooseLambda(quiet, params), params.lambda);
-  EXPECT_DOUBLE_EQ(chooseLambda(noisy, params), 200 * params.lambda_noise_factor);
+  cv::Mat d(40, 40, CV_32F, cv::Scalar(5));
+  d(cv::Rect(0, 0, 40, 20)).setTo(300);  // top half: badly aligned static texture
+  const std::vector<cv::Point2f> bottom{{5, 30}, {15, 30}, {25, 30}, {35, 30}};
+  const std::vector<cv::Point2f> mixed{{5, 30}, {15, 10}, {25, 10}, {35, 10}};
+  EXPECT_DOUBLE_EQ(chooseLambda(d, bottom, params), params.lambda);
+  EXPECT_DOUBLE_EQ(chooseLambda(d, mixed, params), 300 * params.lambda_residual_factor);
+  EXPECT_DOUBLE_EQ(chooseLambda(d, {}, params), params.lambda);
 }
 
 TEST(Classify, FarthestPointClusteringSeparatesDistantGroups) {
