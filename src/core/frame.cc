@@ -22,8 +22,9 @@ cv::Mat toBgr8(const cv::Mat& frame) {
     case CV_16S: frame.convertTo(eight, CV_8U, 1.0 / 256.0, 128.0); break;
     case CV_32F:
     case CV_64F: {
-      cv::Mat finite = frame.clone();
-      cv::patchNaNs(finite, 0.0);  // NaN would otherwise become an arbitrary byte
+      cv::Mat finite;
+      frame.convertTo(finite, CV_32F);  // patchNaNs takes 32-bit floats only
+      cv::patchNaNs(finite, 0.0);       // NaN would otherwise become an arbitrary byte
       finite.convertTo(eight, CV_8U, 255.0);
       break;
     }

@@ -27,6 +27,16 @@ std::vector<cv::Point2f> scaled(const std::vector<cv::Point2f>& points, double s
   return out;
 }
 
+// Scaled down from the alignment scale, a feature by the right or bottom edge can round to the
+// pixel past it; the seeds index images of `size`.
+std::vector<cv::Point2f> clampedTo(std::vector<cv::Point2f> points, cv::Size size) {
+  for (cv::Point2f& p : points) {
+    p.x = std::clamp(p.x, 0.f, static_cast<float>(size.width - 1));
+    p.y = std::clamp(p.y, 0.f, static_cast<float>(size.height - 1));
+  }
+  return points;
+}
+
 }  // namespace
 
 struct Segmenter::Impl {
@@ -38,7 +48,8 @@ struct Segmenter::Impl {
   cv::Matx33d last_model = cv::Matx33d::eye();
 
   Result process(const cv::Mat& frame);
-  void classifyAndCut(const PreparedFrame& cur, const cv::Mat& difference, Result* result);
+  void classifyAndCut(const PreparedFrame& cur, const MotionEstimate& motion,
+                      const cv::Mat& difference, Result* result);
 };
 
 Result Segmenter::Impl::process(const cv::Mat& frame) {
@@ -68,18 +79,19 @@ Result Segmenter::Impl::process(const cv::Mat& frame) {
     result.debug["matches"] = drawMatches(cur.small_grey, step.motion);
     result.debug["difference"] = drawDifference(difference);
   }
-  classifyAndCut(cur, difference, &result);
+  classifyAndCut(cur, step.motion, difference, &result);
   diag.timings.total_ms = millisecondsSince(start);
   return result;
 }
 
 // §3.2 and §3.3 on the current frame's features at the segmentation scale.
-void Segmenter::Impl::classifyAndCut(const PreparedFrame& cur, const cv::Mat& difference,
-                                     Result* result) {
+void Segmenter::Impl::classifyAndCut(const PreparedFrame& cur, const MotionEstimate& motion,
+                                     const cv::Mat& difference, Result* result) {
   Diagnostics& diag = result->diagnostics;
   Clock::time_point stage = Clock::now();
-  const std::vector<cv::Point2f> points = scaled(cur.features, cur.seg_scale / cur.align_scale);
-  diag.lambda = chooseLambda(difference, params);
+  const std::vector<cv::Point2f> points =
+      clampedTo(scaled(cur.features, cur.seg_scale / cur.align_scale), cur.seg_bgr.size());
+  diag.lambda = chooseLambda(difference, staticPoints(motion, cur, cur.seg_scale), params);
   std::vector<FeatureLabel> labels = classifyByDifference(difference, points, diag.lambda);
   if (params.debug_images) result->debug["features"] = drawFeatures(cur.seg_bgr, points, labels);
   if (params.gmm_refine) {

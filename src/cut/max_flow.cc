@@ -90,9 +90,18 @@ std::vector<std::uint8_t> cutWithBoost(const FlowGraph& g) {
   return side;
 }
 
+// Without edges each node is cut on its own (OpenCV's GCGraph asserts on such a graph): it
+// joins the source only when that link is the stronger, as free nodes do in Boost's solver.
+std::vector<std::uint8_t> cutWithoutEdges(const FlowGraph& g) {
+  std::vector<std::uint8_t> side(static_cast<size_t>(g.nodes()));
+  for (size_t i = 0; i < side.size(); ++i) side[i] = g.source[i] > g.sink[i];
+  return side;
+}
+
 }  // namespace
 
 std::vector<std::uint8_t> minimumCut(const FlowGraph& graph, MaxFlowSolver solver) {
+  if (graph.edge_from.empty()) return cutWithoutEdges(graph);
   return solver == MaxFlowSolver::kBoost ? cutWithBoost(graph) : cutWithOpenCv(graph);
 }
 
