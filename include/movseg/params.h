@@ -52,7 +52,7 @@ struct Params {
   // q75 being the upper quartile of d at the background matches S_b: a floor, raised where the
   // alignment leaves residuals on static texture (parallax, blur, compression; docs/design.md).
   double lambda = 100.0;
-  double lambda_residual_factor = 2.0;
+  double lambda_residual_factor = 4.0;
   // Gaussian blur (sigma, segmentation-scale pixels) of both frames before eq. (4): sub-pixel
   // misalignment on fine texture and sensor noise then no longer look like motion. 0 = none.
   double difference_blur = 0.0;
