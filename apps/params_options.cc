@@ -54,6 +54,7 @@ void setParam(Params* params, const std::string& assignment) {
       {"alignment_width", [&] { params->alignment_width = integer(); }},
       {"max_corners", [&] { params->max_corners = integer(); }},
       {"edge_cell", [&] { params->edge_cell = integer(); }},
+      {"max_tracked_features", [&] { params->max_tracked_features = integer(); }},
       {"lk_window", [&] { params->lk_window = integer(); }},
       {"lk_levels", [&] { params->lk_levels = integer(); }},
       {"zncc_window", [&] { params->zncc_window = integer(); }},

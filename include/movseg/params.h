@@ -25,6 +25,10 @@ struct Params {
   // Edge features: at most one Canny edge point per cell of this many pixels (alignment scale),
   // so that textured regions do not hog the features.
   int edge_cell = 8;
+  // At most this many of the features are tracked for alignment (an even subsample; all of
+  // them are classified in §3.2): a 6-parameter model needs a few hundred good tracks, and LK
+  // is the stage's main cost.
+  int max_tracked_features = 300;
   // Pyramid Lucas–Kanade (ref. [16]): window side and pyramid levels above the base.
   int lk_window = 11;
   int lk_levels = 3;

@@ -17,6 +17,7 @@ void Params::check() const {
   require(segmentation_width >= 0, "segmentation_width must be >= 0 (0 = native size)");
   require(max_corners >= 0, "max_corners must be >= 0");
   require(edge_cell >= 2, "edge_cell must be >= 2");
+  require(max_tracked_features >= 8, "max_tracked_features must be >= 8");
   require(lk_window >= 3 && lk_window % 2 == 1, "lk_window must be odd and >= 3");
   require(lk_levels >= 0 && lk_levels <= 8, "lk_levels must be in [0, 8]");
   require(zncc_window >= 3 && zncc_window % 2 == 1, "zncc_window must be odd and >= 3");

@@ -40,6 +40,16 @@ RansacReport fitCameraModel(const std::vector<Track>& matches, const std::vector
   return fitModel<AffineEstimator>(matches, use, image_size, initial, params, rng);
 }
 
+// Every k-th point so that at most `count` remain; detectFeatures() lists corners by strength
+// and edge points in raster order, so the subsample keeps the spread of both.
+std::vector<cv::Point2f> evenSubsample(const std::vector<cv::Point2f>& points, int count) {
+  if (static_cast<int>(points.size()) <= count) return points;
+  std::vector<cv::Point2f> kept;
+  const double step = static_cast<double>(points.size()) / count;
+  for (int i = 0; i < count; ++i) kept.push_back(points[static_cast<size_t>(i * step)]);
+  return kept;
+}
+
 // Eq. (3) on the matches: S_b = {d <= lambda}.
 std::vector<char> splitBackground(const PreparedFrame& prev, const PreparedFrame& cur,
                                   const std::vector<Track>& matches, const cv::Matx33d& model,
@@ -62,8 +72,9 @@ MotionEstimate estimateCameraMotion(const PreparedFrame& prev, const PreparedFra
   result.model = warm;
   result.features = static_cast<int>(prev.features.size());
   const cv::Matx33d predicted = params.warm_start ? warm : cv::Matx33d::eye();
-  const std::vector<Track> tracks =
-      trackForwardBackward(prev.pyramid, cur.pyramid, prev.features, predicted, params);
+  const std::vector<Track> tracks = trackForwardBackward(
+      prev.pyramid, cur.pyramid, evenSubsample(prev.features, params.max_tracked_features),
+      predicted, params);
   result.tracks = static_cast<int>(tracks.size());
   result.matches = filterTracks(tracks);
   result.background.assign(result.matches.size(), 1);  // Algorithm 1: S_b = S_m
