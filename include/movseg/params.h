@@ -21,10 +21,10 @@ struct Params {
   // scaled back to full resolution. 0 = native size. Never upscales.
   int alignment_width = 320;
   // Corner features (Shi–Tomasi, ref. [15]) per frame, at the alignment scale.
-  int max_corners = 200;
+  int max_corners = 500;
   // Edge features: at most one Canny edge point per cell of this many pixels (alignment scale),
   // so that textured regions do not hog the features.
-  int edge_cell = 8;
+  int edge_cell = 4;
   // At most this many of the features are tracked for alignment (an even subsample; all of
   // them are classified in §3.2): a 6-parameter model needs a few hundred good tracks, and LK
   // is the stage's main cost.
