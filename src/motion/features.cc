@@ -1,6 +1,7 @@
 #include "motion/features.h"
 
 #include <algorithm>
+#include <cstdlib>
 
 #include <opencv2/imgproc.hpp>
 
@@ -10,21 +11,31 @@ namespace {
 // |gx| + |gy| of the 3x3 Sobel on 8-bit grey; below this a cell has no edge worth tracking.
 constexpr int kMinEdgeGradient = 60;
 
+// One pass over the gradient magnitude keeps each cell's strongest pixel (a per-cell
+// cv::minMaxLoc costs more in call overhead than the scan itself at small cells).
 void addEdgePoints(const cv::Mat& grey, int cell, int margin, std::vector<cv::Point2f>* points) {
-  cv::Mat gx, gy, magnitude;
+  cv::Mat gx, gy;
   cv::Sobel(grey, gx, CV_16S, 1, 0);
   cv::Sobel(grey, gy, CV_16S, 0, 1);
-  cv::Mat abs_gx = cv::abs(gx), abs_gy = cv::abs(gy);
-  cv::add(abs_gx, abs_gy, magnitude, cv::noArray(), CV_32S);
   const cv::Rect inner(margin, margin, grey.cols - 2 * margin, grey.rows - 2 * margin);
-  for (int y = inner.y; y < inner.br().y; y += cell) {
-    for (int x = inner.x; x < inner.br().x; x += cell) {
-      const cv::Rect box = cv::Rect(x, y, cell, cell) & inner;
-      double best = 0;
-      cv::Point at;
-      cv::minMaxLoc(magnitude(box), nullptr, &best, nullptr, &at);
-      if (best >= kMinEdgeGradient) points->emplace_back(at + box.tl());
+  const int cells_x = (inner.width + cell - 1) / cell, cells_y = (inner.height + cell - 1) / cell;
+  std::vector<int> best(static_cast<size_t>(cells_x) * cells_y, kMinEdgeGradient - 1);
+  std::vector<cv::Point> at(best.size());
+  for (int y = inner.y; y < inner.br().y; ++y) {
+    const short* row_x = gx.ptr<short>(y);
+    const short* row_y = gy.ptr<short>(y);
+    const size_t cell_row = static_cast<size_t>((y - inner.y) / cell) * cells_x;
+    for (int x = inner.x; x < inner.br().x; ++x) {
+      const int magnitude = std::abs(row_x[x]) + std::abs(row_y[x]);
+      const size_t c = cell_row + static_cast<size_t>((x - inner.x) / cell);
+      if (magnitude > best[c]) {
+        best[c] = magnitude;
+        at[c] = {x, y};
+      }
     }
+  }
+  for (size_t c = 0; c < best.size(); ++c) {
+    if (best[c] >= kMinEdgeGradient) points->emplace_back(at[c]);
   }
 }
 
