@@ -1,12 +1,22 @@
 // build/movseg: segment moving objects, make synthetic test video, evaluate and benchmark.
+#include <cstdlib>
 #include <exception>
 #include <iostream>
 
 #include <opencv2/core/utility.hpp>
+#include <opencv2/core/utils/logger.hpp>
 
 #include "commands.h"
 
+// Errors reach the user as one line of ours; FFmpeg's and OpenCV's own chatter ("moov atom not
+// found", imread warnings) would add lines around it. An explicit environment setting wins.
+void quietLibraries() {
+  setenv("OPENCV_FFMPEG_LOGLEVEL", "-8", 0);  // AV_LOG_QUIET
+  cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_ERROR);
+}
+
 int main(int argc, char** argv) {
+  quietLibraries();
   cv::setNumThreads(1);  // per-frame work is small; one core per stream is the design point
   CLI::App app{"movseg: moving object segmentation for freely moving cameras"};
   app.require_subcommand(1);

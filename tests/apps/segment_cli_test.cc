@@ -1,0 +1,151 @@
+// `movseg segment` end to end: outputs, and every kind of bad input of the foundation issue
+// gives a one-line message and a non-zero exit.
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "test_support.h"
+
+namespace movseg {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Exactly one line, naming the problem.
+void expectOneLineError(const test::CommandResult& r, const std::string& needle) {
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.output.rfind("movseg: error: ", 0), 0u) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_NE(r.output.find(needle), std::string::npos) << r.output;
+}
+
+std::string synthClip(const test::TempDir& dir, int frames) {
+  EXPECT_EQ(test::runCli("synth -o " + dir / "clip" + " --frames " + std::to_string(frames))
+                .exit_code, 0);
+  return dir / "clip/frames";
+}
+
+TEST(SegmentCli, WritesOneMaskPerFrameAndStatsLines) {
+  const test::TempDir dir;
+  const std::string frames = synthClip(dir, 6);
+  const test::CommandResult r = test::runCli("segment " + frames + " -o " + dir / "out" +
+                                             " --stats " + dir / "stats.jsonl" + " --overlay");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("segment: 6 frames"), std::string::npos) << r.output;
+  for (int i = 0; i < 6; ++i) {
+    char name[16];
+    std::snprintf(name, sizeof name, "%05d.png", i);
+    const cv::Mat mask = cv::imread(dir / "out/" + name, cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(mask.type(), CV_8UC1) << name;
+    EXPECT_EQ(mask.size(), cv::Size(320, 240));
+    EXPECT_EQ(cv::countNonZero((mask != 0) & (mask != 255)), 0);
+    EXPECT_TRUE(fs::exists(dir / "out/overlay/" + name));
+  }
+  std::ifstream stats(dir / "stats.jsonl");
+  std::string line;
+  int lines = 0;
+  while (std::getline(stats, line)) {
+    const nlohmann::json j = nlohmann::json::parse(line);
+    EXPECT_EQ(j.at("frame").get<int>(), lines);
+    EXPECT_EQ(j.at("model").size(), 2u);  // affine: 2 rows of 3
+    EXPECT_EQ(j.at("model")[0].size(), 3u);
+    EXPECT_TRUE(j.at("ms").contains("total"));
+    EXPECT_EQ(j.at("flags").at("first_frame").get<bool>(), lines == 0);
+    ++lines;
+  }
+  EXPECT_EQ(lines, 6);
+}
+
+TEST(SegmentCli, DebugWritesEachStagesPictures) {
+  const test::TempDir dir;
+  const std::string frames = synthClip(dir, 3);
+  ASSERT_EQ(test::runCli("segment " + frames + " -o " + dir / "out" + " --debug -q").exit_code, 0);
+  for (const char* stage : {"matches", "difference", "features", "features_refined", "mask"}) {
+    EXPECT_TRUE(fs::exists(dir / "out/debug/" + stage + "/00002.png")) << stage;
+  }
+}
+
+TEST(SegmentCli, MissingInput) {
+  const test::TempDir dir;
+  expectOneLineError(test::runCli("segment " + dir / "nothing.mp4" + " -o " + dir / "out"),
+                     "nothing.mp4");
+}
+
+TEST(SegmentCli, EmptyAndUnreadableVideos) {
+  const test::TempDir dir;
+  { std::ofstream(dir / "empty.mp4"); }
+  { std::ofstream(dir / "junk.mp4") << "this is not a video at all"; }
+  for (const char* name : {"empty.mp4", "junk.mp4"}) {
+    const test::CommandResult r = test::runCli("segment " + dir / name + " -o " + dir / "out");
+    expectOneLineError(r, name);
+    EXPECT_FALSE(fs::exists(dir / "out/00000.png"));
+  }
+}
+
+TEST(SegmentCli, FolderWithoutImages) {
+  const test::TempDir dir;
+  fs::create_directories(dir / "frames");
+  { std::ofstream(dir / "frames/readme.txt") << "no images here"; }
+  expectOneLineError(test::runCli("segment " + dir / "frames" + " -o " + dir / "out"),
+                     "no images");
+}
+
+TEST(SegmentCli, CorruptImageInAFolderIsNamed) {
+  const test::TempDir dir;
+  const std::string frames = synthClip(dir, 3);
+  { std::ofstream(frames + "/00001.png", std::ios::trunc) << "garbage"; }
+  expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "out"), "00001.png");
+  EXPECT_TRUE(fs::exists(dir / "out/00000.png"));  // what came before is complete
+  EXPECT_FALSE(fs::exists(dir / "out/00001.png"));
+}
+
+TEST(SegmentCli, UnknownOptionAndBadValues) {
+  const test::TempDir dir;
+  const std::string frames = synthClip(dir, 2);
+  expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "o" + " --frobnicate"),
+                     "frobnicate");
+  expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "o" + " --lambda -3"),
+                     "lambda");
+  expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "o" + " --gmm-k 0"),
+                     "gmm_clusters");
+  expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "o" + " --set nope=1"),
+                     "nope");
+  expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "o" + " --method magic"),
+                     "magic");
+}
+
+TEST(SegmentCli, UnwritableOutputFolder) {
+  const test::TempDir dir;
+  const std::string frames = synthClip(dir, 2);
+  { std::ofstream(dir / "a-file") << "x"; }
+  expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "a-file/out"), "a-file");
+}
+
+// Grey, BGRA and 16-bit images are converted; a frame of another size restarts the segmenter.
+TEST(SegmentCli, MixedFrameTypesAndSizesAreAccepted) {
+  const test::TempDir dir;
+  fs::create_directories(dir / "mixed");
+  const cv::Mat base = cv::imread(synthClip(dir, 2) + "/00000.png");
+  cv::Mat grey, bgra, deep, small;
+  cv::cvtColor(base, grey, cv::COLOR_BGR2GRAY);
+  cv::cvtColor(base, bgra, cv::COLOR_BGR2BGRA);
+  base.convertTo(deep, CV_16UC3, 256);
+  cv::resize(base, small, {160, 120});
+  cv::imwrite(dir / "mixed/0.png", base);
+  cv::imwrite(dir / "mixed/1.png", grey);
+  cv::imwrite(dir / "mixed/2.png", bgra);
+  cv::imwrite(dir / "mixed/3.png", deep);
+  cv::imwrite(dir / "mixed/4.png", small);
+  const test::CommandResult r = test::runCli("segment " + dir / "mixed" + " -o " + dir / "out" +
+                                             " --stats " + dir / "s.jsonl");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("1 size resets"), std::string::npos) << r.output;
+  EXPECT_EQ(cv::imread(dir / "out/00004.png", cv::IMREAD_UNCHANGED).size(), cv::Size(160, 120));
+}
+
+}  // namespace
+}  // namespace movseg
