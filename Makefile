@@ -25,7 +25,8 @@ test: deps
 
 bench: deps
 	@$(MAKE) --no-print-directory build
-	@$(BUILD_DIR)/bench/movseg_bench --benchmark_min_time=0.5
+	@$(BUILD_DIR)/bench/movseg_bench --benchmark_min_time=0.5 --benchmark_repetitions=5 \
+	  --benchmark_report_aggregates_only=true
 
 clean:
 	@rm -rf $(BUILD_DIR)

@@ -76,6 +76,25 @@ void BM_Difference(benchmark::State& state) {
   }
 }
 
+// §3.2: eq. (3) at the features and the GMM refinement.
+void BM_Classify(benchmark::State& state) {
+  const StageInputs in(synthPair(state));
+  const double s = in.cur.seg_scale / in.cur.align_scale;
+  std::vector<cv::Point2f> points;
+  std::vector<cv::Vec3f> colours;
+  for (const cv::Point2f& p : in.cur.features) {
+    points.push_back(p * static_cast<float>(s));
+    colours.emplace_back(in.cur.seg_bgr.at<cv::Vec3b>(points.back()));
+  }
+  for (auto _ : state) {
+    const double lambda =
+        chooseLambda(in.difference, staticPoints(in.motion, in.cur, in.cur.seg_scale), in.params);
+    std::vector<FeatureLabel> labels = classifyByDifference(in.difference, points, lambda);
+    refineByColour(colours, in.params.gmm_clusters, &labels);
+    benchmark::DoNotOptimize(labels);
+  }
+}
+
 void BM_GeodesicDistances(benchmark::State& state) {
   const StageInputs in(synthPair(state));
   cv::Mat colour;
@@ -124,6 +143,7 @@ void cutVariants(benchmark::internal::Benchmark* b) {
 BENCHMARK(BM_Prepare)->Apply(sizes);
 BENCHMARK(BM_Motion)->Apply(sizes);
 BENCHMARK(BM_Difference)->Apply(sizes);
+BENCHMARK(BM_Classify)->Apply(sizes);
 BENCHMARK(BM_GeodesicDistances)->Apply(sizes);
 BENCHMARK(BM_GraphCut)->Apply(cutVariants);
 BENCHMARK(BM_Process)->Apply(sizes);
