@@ -1,4 +1,4 @@
-// movseg segment INPUT -o OUTDIR [--overlay [PATH]] [--debug] [--static] [--max-frames N] ...
+// movseg segment INPUT -o OUTDIR [--overlay [PATH]] [--show] [--debug] [--static] ...
 #include <iostream>
 #include <memory>
 
@@ -22,6 +22,8 @@ void addSegmentCommand(CLI::App& app) {
                   "without a value, OUTDIR/overlay/")
       ->expected(0, 1)
       ->default_str("");
+  cmd->add_flag("--show", options->show,
+                "Show the overlay in a live window (needs a display; q or Esc stops)");
   cmd->add_flag("--debug", options->debug, "Write each stage's pictures to OUTDIR/debug/<stage>/");
   cmd->add_option("--max-frames", options->max_frames, "Stop after N frames")
       ->check(CLI::NonNegativeNumber);
@@ -39,7 +41,11 @@ void addSegmentCommand(CLI::App& app) {
     if (summary.interrupted) {
       std::cerr << "movseg: interrupted after " << summary.frames
                 << " frames; the files written so far are complete\n";
-      throw std::runtime_error("interrupted");
+      throw CLI::RuntimeError(130);  // 128 + SIGINT, the shell's code for a run stopped by Ctrl-C
+    }
+    if (summary.stream_ended) {
+      std::cerr << "movseg: '" << options->input << "' gave no more frames after " << summary.frames
+                << " (the stream ended or stalled); the masks written so far are complete\n";
     }
     if (!options->quiet) std::cout << "segment: " << describeSummary(summary) << "\n";
   });

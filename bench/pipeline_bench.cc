@@ -101,8 +101,8 @@ void BM_GeodesicDistances(benchmark::State& state) {
   in.cur.seg_bgr.convertTo(colour, CV_32FC3, 1.0 / 255.0);
   for (auto _ : state) {
     const GeodesicGrid grid(colour, in.params.geodesic_gamma);
-    benchmark::DoNotOptimize(grid.distanceFrom(in.fg));
-    benchmark::DoNotOptimize(grid.distanceFrom(in.bg));
+    benchmark::DoNotOptimize(grid.distanceFrom(in.fg, 1));
+    benchmark::DoNotOptimize(grid.distanceFrom(in.bg, 1));
   }
 }
 

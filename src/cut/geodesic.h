@@ -18,8 +18,8 @@ class GeodesicGrid {
   // Shortest-path distance from every pixel to the nearest seed (CV_32F), by pairs of forward
   // and backward raster passes until nothing changes, at most `max_sweeps` pairs. Each pair
   // follows paths that turn back at most once per direction, so a few pairs are exact on most
-  // images and two are close (docs/design.md). Without seeds every distance is +infinity.
-  cv::Mat distanceFrom(const std::vector<cv::Point>& seeds, int max_sweeps = 2) const;
+  // images and one is close (docs/design.md). Without seeds every distance is +infinity.
+  cv::Mat distanceFrom(const std::vector<cv::Point>& seeds, int max_sweeps) const;
 
   cv::Size size() const { return size_; }
 

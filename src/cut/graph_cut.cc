@@ -11,6 +11,10 @@
 namespace movseg {
 namespace {
 
+// One forward+backward raster sweep: a second one left DAVIS J (0.358 / 0.359) and the synthetic
+// J unchanged and costs 0.8 ms at 320x240 (docs/design.md).
+constexpr int kGeodesicSweeps = 1;
+
 // Stands for the infinite cost of eq. (8) in the float capacities of the max-flow graph.
 constexpr float kHardConstraint = 1e9f;
 
@@ -185,8 +189,9 @@ CutResult geodesicGraphCut(const cv::Mat& bgr, const std::vector<cv::Point>& for
   cv::Mat colour;
   bgr.convertTo(colour, CV_32FC3, 1.0 / 255.0);
   const GeodesicGrid grid(colour, params.geodesic_gamma);
-  const Unaries unary = geodesicUnaries(grid.distanceFrom(foreground),
-                                        grid.distanceFrom(background), foreground, background);
+  const Unaries unary =
+      geodesicUnaries(grid.distanceFrom(foreground, kGeodesicSweeps),
+                      grid.distanceFrom(background, kGeodesicSweeps), foreground, background);
   const Pairwise pairwise = pairwiseWeights(colour, unary.confidence, params.cut_weight);
   cv::Mat state = decidedPixels(unary, pairwise);
   if (params.cut_band > 0) fixOutsideBand(unary, params.cut_band, &state);

@@ -49,7 +49,7 @@ cv::Mat toColour(const cv::Mat& bgr) {
 
 TEST(Geodesic, FlatImageGivesTheChamferDistance) {
   const cv::Mat colour = toColour(cv::Mat(5, 7, CV_8UC3, cv::Scalar(10, 20, 30)));
-  const cv::Mat d = GeodesicGrid(colour, 40).distanceFrom({{0, 0}});
+  const cv::Mat d = GeodesicGrid(colour, 40).distanceFrom({{0, 0}}, 1);
   EXPECT_FLOAT_EQ(d.at<float>(0, 6), 6.f);                                   // six steps right
   EXPECT_NEAR(d.at<float>(4, 4), 4 * std::sqrt(2.f), 1e-5);                   // four diagonal
   EXPECT_NEAR(d.at<float>(4, 6), 4 * std::sqrt(2.f) + 2, 1e-5);
@@ -85,13 +85,14 @@ TEST(Geodesic, EqualsDijkstraOnTexture) {
   };
   const GeodesicGrid grid(colour, 10);
   EXPECT_LT(worstRelativeError(grid.distanceFrom(seeds, 100)), 1e-4);  // run to convergence
-  // The pipeline's two sweeps overestimate only where shortest paths wind a lot.
+  // Few sweeps overestimate only where shortest paths wind a lot (this texture is a hard case).
   EXPECT_LT(worstRelativeError(grid.distanceFrom(seeds, 2)), 0.2);
+  EXPECT_LT(worstRelativeError(grid.distanceFrom(seeds, 1)), 0.5);
 }
 
 TEST(Geodesic, NoSeedsMeansInfinitelyFar) {
   const cv::Mat colour = toColour(cv::Mat(4, 4, CV_8UC3, cv::Scalar(0)));
-  const cv::Mat d = GeodesicGrid(colour, 1).distanceFrom({});
+  const cv::Mat d = GeodesicGrid(colour, 1).distanceFrom({}, 1);
   EXPECT_TRUE(std::isinf(d.at<float>(2, 2)));
 }
 

@@ -1,0 +1,23 @@
+"""Segments the moving objects of a video and writes one mask per frame, OUTDIR/00000.png, ...
+
+Usage: python3 segment_video.py INPUT OUTDIR   (INPUT: video file, stream URL, or frames/%05d.png)
+"""
+import sys
+
+import cv2
+import movseg
+
+video = cv2.VideoCapture(sys.argv[1])
+# Any field of include/movseg/params.h by name; static_camera=True suits a fixed camera.
+segmenter = movseg.Segmenter(movseg.Params(static_camera=False))
+index = 0
+while True:
+    ok, frame = video.read()  # HxWx3 uint8 BGR
+    if not ok:
+        break
+    result = segmenter.process(frame)
+    cv2.imwrite(f"{sys.argv[2]}/{index:05d}.png", result.mask)  # HxW uint8, 0 / 255
+    moving = result.features[result.features[:, 2] == 1]  # rows of (x, y, label)
+    print(f"frame {index}: {cv2.countNonZero(result.mask)} moving pixels, "
+          f"{len(moving)} moving features, {result.timings['total_ms']:.1f} ms")
+    index += 1

@@ -1,0 +1,10 @@
+// The extension module behind the Python package movseg (python/movseg/__init__.py).
+#include "bindings.h"
+
+PYBIND11_MODULE(_movseg, module) {
+  module.doc() = "movseg: moving object segmentation for freely moving cameras";
+  module.attr("__version__") = MOVSEG_VERSION;
+  movseg::python::bindParams(module);
+  movseg::python::bindResult(module);
+  movseg::python::bindSegmenter(module);
+}

@@ -1,0 +1,116 @@
+"""movseg.Segmenter through numpy: the CLI's masks bit for bit, every frame type, the results."""
+import gc
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+import pytest
+
+import movseg
+
+
+def segment(frames, params=None):
+    segmenter = movseg.Segmenter(params or movseg.Params())
+    return [segmenter.process(frame) for frame in frames]
+
+
+def test_masks_are_the_clis_bit_for_bit(frames, cli_masks):
+    masks = [r.mask for r in segment(frames)]
+    assert len(masks) == len(cli_masks)
+    for index, (mask, expected) in enumerate(zip(masks, cli_masks)):
+        assert mask.dtype == np.uint8 and mask.shape == expected.shape, index
+        assert np.array_equal(mask, expected), f"frame {index}"
+
+
+def test_frames_may_be_freed_after_the_call(frames, cli_masks):
+    # The segmenter keeps the previous frame: the array it was given must stay valid.
+    segmenter = movseg.Segmenter()
+    for index, frame in enumerate(frames):
+        mask = segmenter.process(frame.copy()).mask
+        gc.collect()
+        assert np.array_equal(mask, cli_masks[index]), f"frame {index}"
+
+
+def test_bgra_uint16_and_strided_frames_give_the_bgr_masks(frames):
+    expected = [r.mask for r in segment(frames[:3])]
+    bgra = [np.dstack([f, np.full(f.shape[:2], 255, np.uint8)]) for f in frames[:3]]
+    deep = [f.astype(np.uint16) * 256 for f in frames[:3]]
+    padded = [np.pad(f, ((0, 0), (0, 7), (0, 0)))[:, :-7] for f in frames[:3]]  # padded rows
+    fortran = [np.asfortranarray(f) for f in frames[:3]]  # channels not packed: copied once
+    for variant in (bgra, deep, padded, fortran):
+        masks = [r.mask for r in segment(variant)]
+        assert all(np.array_equal(a, b) for a, b in zip(masks, expected))
+
+
+def test_grey_frames_give_masks_of_their_size(frames):
+    grey = [f[:, :, 1].copy() for f in frames[:3]]
+    for r in segment(grey):
+        assert r.mask.shape == grey[0].shape and set(np.unique(r.mask)) <= {0, 255}
+
+
+def test_result_arrays_and_diagnostics(frames):
+    first, second = segment(frames[:2])
+    assert first.diagnostics.first_frame and not first.mask.any()
+    assert second.affine.shape == (2, 3) and second.affine.dtype == np.float64
+    assert np.array_equal(second.model[:2], second.affine)
+    assert np.array_equal(second.model[2], [0, 0, 1])
+    assert second.features.ndim == 2 and second.features.shape[1] == 3
+    assert second.features.dtype == np.float32 and len(second.features) > 10
+    assert set(np.unique(second.features[:, 2])) <= {0, 1, 2}
+    assert set(second.timings) == {"prepare_ms", "motion_ms", "classify_ms", "cut_ms", "total_ms"}
+    assert second.timings["total_ms"] > 0
+    d = second.diagnostics
+    assert d.matches > 0 and d.background_seeds > 0 and not d.first_frame
+    assert d.lambda_ >= movseg.Params().lambda_ and d.timings == second.timings
+
+
+def test_homography_has_no_affine_form(frames):
+    params = movseg.Params(motion_model=movseg.MotionModel.homography)
+    r = segment(frames[:2], params)[1]
+    assert r.affine is None and r.model.shape == (3, 3)
+
+
+def test_debug_pictures_and_compensated_previous_frame(frames):
+    segmenter = movseg.Segmenter(movseg.Params(debug_images=True))
+    assert segmenter.compensated_previous_frame() is None
+    segmenter.process(frames[0])
+    r = segmenter.process(frames[1])
+    assert "mask" in r.debug and r.debug["mask"].shape[:2] == frames[1].shape[:2]
+    assert segmenter.compensated_previous_frame().shape == frames[1].shape
+    segmenter.reset()
+    assert segmenter.process(frames[2]).diagnostics.first_frame
+
+
+@pytest.mark.parametrize("frame", [
+    np.zeros((0, 0, 3), np.uint8),
+    np.zeros((8, 8, 2), np.uint8),
+    np.zeros((8, 8, 5), np.uint8),
+    np.zeros((8, 8, 1000), np.uint8),
+    np.zeros(8, np.uint8),
+    np.zeros((2, 8, 8, 3), np.uint8),
+    np.zeros((8, 8, 3), np.float16),
+    np.zeros((8, 8, 3), bool),
+    np.zeros((8, 8, 3), np.dtype(">u2")),
+], ids=["empty", "2-channel", "5-channel", "1000-channel", "1-D", "4-D", "float16", "bool",
+        "big-endian"])
+def test_bad_frames_raise_value_error(frame):
+    with pytest.raises(ValueError):
+        movseg.Segmenter().process(frame)
+
+
+def test_not_an_array_raises_type_error():
+    with pytest.raises(TypeError):
+        movseg.Segmenter().process("frame.png")
+
+
+def test_segmenters_in_parallel_threads_give_the_clis_masks(frames, cli_masks):
+    with ThreadPoolExecutor(max_workers=4) as pool:
+        runs = list(pool.map(lambda _: [r.mask for r in segment(frames)], range(4)))
+    for masks in runs:
+        assert all(np.array_equal(a, b) for a, b in zip(masks, cli_masks))
+
+
+def test_one_segmenter_shared_by_threads_does_not_crash(frames):
+    segmenter = movseg.Segmenter()
+    with ThreadPoolExecutor(max_workers=4) as pool:
+        results = list(pool.map(lambda f: segmenter.process(f.copy()), frames * 3))
+    assert all(r.mask.shape == frames[0].shape[:2] for r in results)
