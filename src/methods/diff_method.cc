@@ -1,5 +1,4 @@
 #include "classify/classify.h"
-#include "core/camera_tracker.h"
 #include "methods/baselines.h"
 #include "methods/method_support.h"
 #include "motion/model.h"
@@ -7,31 +6,19 @@
 namespace movseg {
 namespace {
 
-class DiffMethod : public Method {
+class DiffMethod : public TrackedMethod {
  public:
-  explicit DiffMethod(const Params& params) : params_(params), tracker_(params) {}
+  using TrackedMethod::TrackedMethod;
 
-  Result process(const cv::Mat& frame) override {
-    const Clock::time_point start = Clock::now();
-    Result result;
-    Diagnostics& diag = result.diagnostics;
-    const CameraTracker::Step step = tracker_.advance(toBgr8(frame), &diag);
+ protected:
+  cv::Mat maskFor(const CameraTracker::Step& step, Diagnostics* diag) override {
     const PreparedFrame& cur = *step.current;
-    if (step.previous == nullptr) {
-      result.mask = cv::Mat::zeros(cur.bgr.size(), CV_8U);
-    } else {
-      const cv::Matx33d model = rescaleModel(diag.model, cur.seg_scale);
-      const cv::Mat d = compensatedDifference(step.previous->seg_smooth, cur.seg_smooth, model);
-      diag.lambda = chooseLambda(d, staticPoints(step.motion, cur, cur.seg_scale), params_);
-      result.mask = upscaledMask(d > diag.lambda, cur.bgr.size());
-    }
-    diag.timings.total_ms = millisecondsSince(start);
-    return result;
+    if (step.previous == nullptr) return cv::Mat::zeros(cur.seg_bgr.size(), CV_8U);
+    const cv::Matx33d model = rescaleModel(diag->model, cur.seg_scale);
+    const cv::Mat d = compensatedDifference(step.previous->seg_smooth, cur.seg_smooth, model);
+    diag->lambda = chooseLambda(d, staticPoints(step.motion, cur, cur.seg_scale), params_);
+    return d > diag->lambda;
   }
-
- private:
-  Params params_;
-  CameraTracker tracker_;
 };
 
 }  // namespace

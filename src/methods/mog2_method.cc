@@ -47,22 +47,19 @@ class Mog2Method : public Method {
 // MOG2 in a stabilised reference frame. to_reference_ maps current segmentation-scale pixels
 // to the reference's; when less than half of the current view still falls on the reference
 // (the camera has panned away), the reference restarts at the current frame.
-class CompensatedMog2Method : public Method {
+class CompensatedMog2Method : public TrackedMethod {
  public:
-  explicit CompensatedMog2Method(const Params& params) : tracker_(params) {}
+  using TrackedMethod::TrackedMethod;
 
-  Result process(const cv::Mat& frame) override {
-    const Clock::time_point start = Clock::now();
-    Result result;
-    Diagnostics& diag = result.diagnostics;
-    const CameraTracker::Step step = tracker_.advance(toBgr8(frame), &diag);
+ protected:
+  cv::Mat maskFor(const CameraTracker::Step& step, Diagnostics* diag) override {
     const PreparedFrame& cur = *step.current;
     const cv::Size size = cur.seg_bgr.size();
     if (step.previous == nullptr) {
       restart();
     } else {
       // previous -> current, so current -> reference is (previous -> reference) * inverse.
-      to_reference_ = to_reference_ * rescaleModel(diag.model, cur.seg_scale).inv();
+      to_reference_ = to_reference_ * rescaleModel(diag->model, cur.seg_scale).inv();
       if (overlap(size) < 0.5) restart();
     }
     cv::Mat stabilised, mask_reference, mask;
@@ -70,9 +67,7 @@ class CompensatedMog2Method : public Method {
     mog2_->apply(stabilised, mask_reference);
     cv::warpPerspective(mask_reference, mask, cv::Mat(to_reference_), size,
                         cv::INTER_NEAREST | cv::WARP_INVERSE_MAP);
-    result.mask = upscaledMask(mask, cur.bgr.size());
-    diag.timings.total_ms = millisecondsSince(start);
-    return result;
+    return mask;
   }
 
  private:
@@ -93,7 +88,6 @@ class CompensatedMog2Method : public Method {
     return (view & reference).area() / reference.area();
   }
 
-  CameraTracker tracker_;
   cv::Ptr<cv::BackgroundSubtractorMOG2> mog2_ = newMog2();
   cv::Matx33d to_reference_ = cv::Matx33d::eye();
 };
