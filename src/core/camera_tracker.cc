@@ -38,8 +38,12 @@ std::vector<cv::Point2f> staticPoints(const MotionEstimate& motion, const Prepar
 
 CameraTracker::CameraTracker(const Params& params) : params_(params) {}
 
-CameraTracker::Step CameraTracker::advance(const cv::Mat& bgr, Diagnostics* diag) {
+CameraTracker::Step CameraTracker::advance(const cv::Mat& frame, Diagnostics* diag) {
   const Clock::time_point start = Clock::now();
+  // The frame is kept as the next pair's previous one, so it must not share the caller's
+  // buffer: a video loop (cap >> frame) refills that buffer with the next frame.
+  cv::Mat bgr = toBgr8(frame);
+  if (bgr.data == frame.data) bgr = bgr.clone();
   if (current_) previous_ = std::move(current_);
   if (previous_ && previous_->bgr.size() != bgr.size()) {
     reset();

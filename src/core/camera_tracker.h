@@ -31,10 +31,11 @@ class CameraTracker {
     MotionEstimate motion;                    // alignment scale (empty on a first frame)
   };
 
-  // Takes the next 8-bit BGR frame. Fills the motion part of *diag (model in full-resolution
-  // pixels, counts, flags, prepare/motion timings). A frame of another size restarts the stream
-  // (diag->reset). The returned pointers stay valid until the next call.
-  Step advance(const cv::Mat& bgr, Diagnostics* diag);
+  // Takes the next frame (any type toBgr8() accepts; throws std::invalid_argument as it does).
+  // Fills the motion part of *diag (model in full-resolution pixels, counts, flags,
+  // prepare/motion timings). A frame of another size restarts the stream (diag->reset). The
+  // returned pointers stay valid until the next call.
+  Step advance(const cv::Mat& frame, Diagnostics* diag);
 
   void reset();
 

@@ -56,7 +56,7 @@ Result Segmenter::Impl::process(const cv::Mat& frame) {
   const Clock::time_point start = Clock::now();
   Result result;
   Diagnostics& diag = result.diagnostics;
-  const CameraTracker::Step step = tracker.advance(toBgr8(frame), &diag);  // §3.1
+  const CameraTracker::Step step = tracker.advance(frame, &diag);  // §3.1
   const PreparedFrame& cur = *step.current;
   last_current = cur.bgr;
   if (step.previous == nullptr) {

@@ -135,6 +135,21 @@ TEST(Segmenter, StaticCameraModeSkipsAlignment) {
   EXPECT_GT(iou(r.mask, pair.cur_mask), 0.85);
 }
 
+// A video loop reuses one buffer for every frame; the segmenter must keep its own copy of the
+// previous frame, or the next call would compare the new frame with itself.
+TEST(Segmenter, CallerReusingTheFrameBufferChangesNothing) {
+  const test::FramePair pair = movingPair();
+  Segmenter fresh, reused;
+  cv::Mat buffer;
+  for (const cv::Mat& frame : {pair.prev, pair.cur}) {
+    frame.copyTo(buffer);
+    const cv::Mat expected = fresh.process(frame.clone()).mask;
+    const cv::Mat got = reused.process(buffer).mask;
+    EXPECT_EQ(cv::countNonZero(expected != got), 0);
+  }
+  EXPECT_GT(cv::countNonZero(fresh.process(pair.prev).mask), 0);
+}
+
 TEST(Segmenter, SameInputGivesBitIdenticalMasks) {
   const test::FramePair pair = movingPair();
   auto run = [&] {
