@@ -61,5 +61,19 @@ TEST(UsageDocs, EveryCodeBlockIsATestedExampleFile) {
   }
 }
 
+// README.md also shows command lines and output; its code blocks that name a file must equal it,
+// and the C++ and Python snippets must be among them.
+TEST(UsageDocs, ReadmeSnippetsAreTheTestedExampleFiles) {
+  const std::string source = MOVSEG_SOURCE_DIR;
+  int named = 0;
+  for (const Snippet& block : snippets(readFile(source + "/README.md"))) {
+    if (block.file.empty()) continue;
+    ++named;
+    EXPECT_EQ(block.code, readFile(source + "/" + block.file))
+        << "README.md:" << block.line << " differs from " << block.file;
+  }
+  EXPECT_GE(named, 2) << "README.md should show examples/minimal/main.cc and a Python example";
+}
+
 }  // namespace
 }  // namespace movseg
