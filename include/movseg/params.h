@@ -67,7 +67,7 @@ struct Params {
 
   // ---- §3.3 geodesic graph cut ---------------------------------------------------------
   // lambda of eq. (6): weight of the pairwise term against the unary term.
-  double cut_weight = 0.3;
+  double cut_weight = 1.0;
   // Colour term of the geodesic metric: a step costs sqrt(1 + (gamma * |dC|)^2) pixels with
   // colours in [0, 1] (docs/design.md).
   double geodesic_gamma = 150.0;
