@@ -3,8 +3,15 @@
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
+# `make test` also runs the sanitizer build and the fuzz smoke runs (docs/reliability.md).
+ASAN_DIR ?= build-asan
+FUZZ_DIR ?= build-fuzz
+FUZZ_SECONDS ?= 60
+# -O1: sanitized code stays fast and its stack traces readable. No -DNDEBUG: asserts are on.
+SANITIZE_FLAGS = -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" \
+  -DMOVSEG_SANITIZE=address,undefined -DMOVSEG_BUILD_BENCH=OFF
 
-.PHONY: all build deps run test bench clean
+.PHONY: all build deps run test test-sanitize test-fuzz bench long-run clean
 
 all: build
 
@@ -22,11 +29,35 @@ run: deps
 test: deps
 	@$(MAKE) --no-print-directory build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+	@$(MAKE) --no-print-directory test-sanitize
+	@$(MAKE) --no-print-directory test-fuzz
+
+# The whole test suite built with AddressSanitizer and UndefinedBehaviorSanitizer; the first
+# report aborts its test.
+test-sanitize: deps
+	@echo "test-sanitize: ASan + UBSan build in $(ASAN_DIR)"
+	@cmake -S . -B $(ASAN_DIR) $(SANITIZE_FLAGS) >/dev/null
+	@cmake --build $(ASAN_DIR) -j $(JOBS)
+	@cd $(ASAN_DIR) && ASAN_OPTIONS=halt_on_error=1:detect_leaks=1 \
+	  UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 ctest --output-on-failure -j $(JOBS)
+
+# libFuzzer (clang) on fuzz/'s targets, FUZZ_SECONDS each from the committed corpus.
+test-fuzz: deps
+	@echo "test-fuzz: libFuzzer + ASan + UBSan build in $(FUZZ_DIR)"
+	@cmake -S . -B $(FUZZ_DIR) -DCMAKE_CXX_COMPILER=clang++ $(SANITIZE_FLAGS) -DMOVSEG_FUZZ=ON \
+	  -DMOVSEG_BUILD_TESTS=OFF >/dev/null
+	@cmake --build $(FUZZ_DIR) -j $(JOBS) --target segmenter_fuzz readers_fuzz
+	@bash fuzz/run.sh $(FUZZ_DIR) $(FUZZ_SECONDS)
 
 bench: deps
 	@$(MAKE) --no-print-directory build
 	@$(BUILD_DIR)/bench/movseg_bench --benchmark_min_time=0.5 --benchmark_repetitions=5 \
 	  --benchmark_report_aggregates_only=true
 
+# 20,000 frames through one Segmenter; fails when resident memory grows by more than 4 MiB.
+long-run: deps
+	@$(MAKE) --no-print-directory build
+	@$(BUILD_DIR)/bench/movseg_long_run
+
 clean:
-	@rm -rf $(BUILD_DIR)
+	@rm -rf $(BUILD_DIR) $(ASAN_DIR) $(FUZZ_DIR)

@@ -182,7 +182,7 @@ GtSequence loadSequence(const std::string& folder, GtFormat format, bool in_data
 }
 
 cv::Mat readImage(const std::string& path, int flags) {
-  cv::Mat image = cv::imread(path, flags);
+  cv::Mat image = decodeImage(path, flags);
   if (image.empty()) throw std::runtime_error("cannot read mask '" + path + "'");
   return image;
 }

@@ -29,7 +29,7 @@ class ImageFolderSource : public FrameSource {
   bool read(cv::Mat* frame) override {
     if (next_ >= files_.size()) return false;
     current_ = files_[next_++];
-    *frame = cv::imread(current_, cv::IMREAD_UNCHANGED);
+    *frame = decodeImage(current_, cv::IMREAD_UNCHANGED);
     if (frame->empty()) throw std::runtime_error("cannot decode image '" + current_ + "'");
     return true;
   }
@@ -80,6 +80,14 @@ std::vector<std::string> listImages(const std::string& folder) {
   }
   std::sort(files.begin(), files.end());
   return files;
+}
+
+cv::Mat decodeImage(const std::string& path, int flags) {
+  try {
+    return cv::imread(path, flags);
+  } catch (const cv::Exception&) {
+    return cv::Mat();
+  }
 }
 
 std::unique_ptr<FrameSource> FrameSource::open(const std::string& input) {

@@ -29,4 +29,8 @@ class FrameSource {
 // The image files of a folder (by extension, case-insensitive), sorted by name.
 std::vector<std::string> listImages(const std::string& folder);
 
+// cv::imread, but an empty Mat for every file it cannot decode: OpenCV throws instead when a
+// header claims a size beyond its limits.
+cv::Mat decodeImage(const std::string& path, int flags);
+
 }  // namespace movseg

@@ -1,0 +1,181 @@
+// Scenes no camera should produce but every camera does: each gives a valid mask, an honest
+// diagnostic and no exception (docs/reliability.md).
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "reliability/reliability_fixture.h"
+#include "test_support.h"
+
+namespace movseg {
+namespace {
+
+const cv::Size kSize(320, 240);
+
+// A threshold far above the floor means the alignment's residual at the background matches
+// was large: the pair could not be aligned, and eq. (3) stopped trusting the difference.
+bool lambdaRaised(const Result& r) { return r.diagnostics.lambda > 10 * Params().lambda; }
+
+TEST(DegenerateScenes, FlatFramesFallBackToTheIdentityWithAnEmptyMask) {
+  for (const double level : {0.0, 90.0, 255.0}) {
+    Segmenter segmenter;
+    const cv::Mat flat(kSize, CV_8UC3, cv::Scalar::all(level));
+    EXPECT_TRUE(segmenter.process(flat).diagnostics.first_frame);
+    for (int i = 0; i < 2; ++i) {
+      const Result r = segmenter.process(flat);
+      test::expectValidResult(r, kSize);
+      EXPECT_EQ(r.diagnostics.features, 0) << level;
+      EXPECT_TRUE(r.diagnostics.motion_fallback) << level;
+      EXPECT_EQ(r.diagnostics.model, cv::Matx33d::eye()) << level;
+      EXPECT_EQ(cv::countNonZero(r.mask), 0) << level;
+    }
+  }
+}
+
+TEST(DegenerateScenes, PureNoiseRaisesLambdaInsteadOfLightingUp) {
+  Segmenter segmenter;
+  for (int i = 0; i < 3; ++i) {
+    cv::Mat noise(kSize, CV_8UC3);
+    cv::RNG(i + 1).fill(noise, cv::RNG::UNIFORM, 0, 256);
+    const Result r = segmenter.process(noise);
+    test::expectValidResult(r, kSize);
+    if (i == 0) continue;
+    EXPECT_TRUE(lambdaRaised(r)) << r.diagnostics.lambda;
+    EXPECT_LT(test::foregroundShare(r.mask), 0.01);
+  }
+}
+
+// Two unrelated pictures: RANSAC still fits some model to the chance matches, but the residual
+// raises lambda so the mask stays nearly empty; the next pair is aligned again.
+TEST(DegenerateScenes, SceneCutGivesANearlyEmptyMaskThenRecovers) {
+  Segmenter segmenter;
+  segmenter.process(test::texture(kSize, 1));
+  const Result cut = segmenter.process(test::texture(kSize, 2));
+  test::expectValidResult(cut, kSize);
+  EXPECT_TRUE(lambdaRaised(cut) || cut.diagnostics.motion_fallback) << cut.diagnostics.lambda;
+  EXPECT_LT(test::foregroundShare(cut.mask), 0.01);
+
+  const Result after = segmenter.process(test::texture(kSize, 2));
+  test::expectValidResult(after, kSize);
+  EXPECT_FALSE(lambdaRaised(after));
+  EXPECT_LT(test::cornerError(after.diagnostics.model, cv::Matx33d::eye(), kSize), 0.5);
+  EXPECT_EQ(cv::countNonZero(after.mask), 0);
+}
+
+// An object that fills the view moves exactly like a camera would: a moving-camera segmenter
+// takes it for camera motion, as it must.
+TEST(DegenerateScenes, WholeFrameMovingIsTakenForCameraMotion) {
+  const cv::Mat world = test::texture({600, 400}, 3);
+  Segmenter segmenter;
+  segmenter.process(test::view(world, {100, 80}, kSize));
+  for (int i = 1; i < 4; ++i) {
+    const Result r = segmenter.process(test::view(world, {100 + 4 * i, 80 + 2 * i}, kSize));
+    test::expectValidResult(r, kSize);
+    EXPECT_FALSE(r.diagnostics.motion_fallback);
+    const cv::Matx33d shift(1, 0, -4, 0, 1, -2, 0, 0, 1);
+    EXPECT_LT(test::cornerError(r.diagnostics.model, shift, kSize), 0.5);
+    EXPECT_EQ(cv::countNonZero(r.mask), 0);
+  }
+}
+
+// With --static nothing is aligned: every pixel differs, so lambda rises with the difference
+// and the mask stays nearly empty rather than covering the frame.
+TEST(DegenerateScenes, WholeFrameMovingBeforeAStaticCameraRaisesLambda) {
+  const cv::Mat world = test::texture({600, 400}, 3);
+  Params params;
+  params.static_camera = true;
+  Segmenter segmenter(params);
+  segmenter.process(test::view(world, {100, 80}, kSize));
+  for (int i = 1; i < 3; ++i) {
+    const Result r = segmenter.process(test::view(world, {100 + 4 * i, 80 + 2 * i}, kSize));
+    test::expectValidResult(r, kSize);
+    EXPECT_EQ(r.diagnostics.model, cv::Matx33d::eye());
+    EXPECT_TRUE(lambdaRaised(r)) << r.diagnostics.lambda;
+    EXPECT_LT(test::foregroundShare(r.mask), 0.01);
+  }
+}
+
+// A 100-pixel jump is beyond the LK pyramid's reach: the pair is misaligned, which lambda
+// absorbs; the next, ordinary pair is aligned again.
+TEST(DegenerateScenes, CameraJumpBeyondLkReachGivesANearlyEmptyMaskThenRecovers) {
+  const cv::Mat world = test::texture({700, 400}, 4);
+  Segmenter segmenter;
+  segmenter.process(test::view(world, {50, 80}, kSize));
+  const Result jump = segmenter.process(test::view(world, {150, 80}, kSize));
+  test::expectValidResult(jump, kSize);
+  EXPECT_TRUE(lambdaRaised(jump) || jump.diagnostics.motion_fallback) << jump.diagnostics.lambda;
+  EXPECT_LT(test::foregroundShare(jump.mask), 0.01);
+
+  const Result after = segmenter.process(test::view(world, {152, 81}, kSize));
+  test::expectValidResult(after, kSize);
+  const cv::Matx33d shift(1, 0, -2, 0, 1, -1, 0, 0, 1);
+  EXPECT_LT(test::cornerError(after.diagnostics.model, shift, kSize), 0.5);
+  EXPECT_EQ(cv::countNonZero(after.mask), 0);
+}
+
+// A textured object crosses a panning view, then stops in the world (it keeps moving in the
+// image with the background): the two-frame method forgets it at once.
+TEST(DegenerateScenes, ObjectThatStopsLeavesTheMask) {
+  const cv::Mat world = test::texture({600, 400}, 5);
+  const cv::Mat object = test::texture({60, 60}, 6);
+  const int stop = 6;
+  Segmenter segmenter;
+  for (int i = 0; i < stop + 4; ++i) {
+    const int camera_x = 100 + 3 * i;
+    const int object_x = 200 + 5 * std::min(i, stop - 1);  // in the world
+    cv::Mat frame = test::view(world, {camera_x, 80}, kSize);
+    object.copyTo(frame(cv::Rect(object_x - camera_x, 90, 60, 60)));
+    const Result r = segmenter.process(frame);
+    test::expectValidResult(r, kSize);
+    if (i == 0) continue;
+    if (i < stop) {
+      EXPECT_GT(test::foregroundShare(r.mask), 0.03) << "frame " << i;
+    } else {
+      EXPECT_LT(test::foregroundShare(r.mask), 0.005) << "frame " << i;
+      EXPECT_EQ(r.diagnostics.foreground_seeds, 0) << "frame " << i;
+    }
+  }
+}
+
+// Frames too small for the LK window are not aligned: the identity is used and said so.
+TEST(DegenerateScenes, TinyAndThinFramesFallBackWithValidMasks) {
+  for (const cv::Size size :
+       {cv::Size(1, 1), cv::Size(2, 2), cv::Size(7, 1000), cv::Size(1000, 7)}) {
+    Segmenter segmenter;
+    EXPECT_TRUE(segmenter.process(test::texture(size, 1)).diagnostics.first_frame);
+    for (std::uint64_t seed : {2, 3}) {
+      const Result r = segmenter.process(test::texture(size, seed));
+      test::expectValidResult(r, size);
+      EXPECT_TRUE(r.diagnostics.motion_fallback) << size;
+      EXPECT_FALSE(r.diagnostics.first_frame) << size;
+    }
+  }
+}
+
+TEST(DegenerateScenes, OneFrameVideoThroughTheCliGivesOneEmptyMask) {
+  test::TempDir dir;
+  std::filesystem::create_directories(dir / "frames");
+  cv::imwrite(dir / "frames/00000.png", test::texture(kSize, 7));
+  const auto run = test::runCli("segment " + (dir / "frames") + " -o " + (dir / "out") +
+                                " --stats " + (dir / "stats.jsonl") + " -q");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(run.output, "");
+  EXPECT_EQ(test::filesIn(dir / "out"), std::vector<std::string>{"00000.png"});
+  const cv::Mat mask = cv::imread(dir / "out/00000.png", cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(mask.size(), kSize);
+  EXPECT_EQ(cv::countNonZero(mask), 0);
+  std::ifstream stats(dir / "stats.jsonl");
+  std::string line, extra;
+  ASSERT_TRUE(std::getline(stats, line));
+  EXPECT_FALSE(std::getline(stats, extra));
+  EXPECT_TRUE(nlohmann::json::parse(line).at("flags").at("first_frame").get<bool>());
+}
+
+}  // namespace
+}  // namespace movseg

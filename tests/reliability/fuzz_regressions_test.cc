@@ -1,0 +1,87 @@
+// The bugs fuzz/ found, one readable test each; their fuzz inputs are in fuzz/corpus/ as
+// regression-* (replayed by fuzz_corpus_test.cc).
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+
+#include "cut/max_flow.h"
+#include "eval/dataset.h"
+#include "io/frame_source.h"
+#include "motion/motion_fixture.h"
+#include "reliability/reliability_fixture.h"
+#include "test_support.h"
+
+namespace movseg {
+namespace {
+
+// regression-float64-frame: cv::patchNaNs takes CV_32F only, so 64-bit frames threw
+// cv::Exception out of process().
+TEST(FuzzRegressions, SixtyFourBitFloatFramesWithNanAreAccepted) {
+  const test::FramePair pair = test::makePair(test::PairSpec());
+  Segmenter as_float, as_double;
+  for (const cv::Mat& frame : {pair.prev, pair.cur}) {
+    cv::Mat f32, f64;
+    frame.convertTo(f32, CV_32FC3, 1.0 / 255.0);
+    f32(cv::Rect(0, 0, 10, 10)).setTo(std::numeric_limits<float>::quiet_NaN());
+    f32.convertTo(f64, CV_64FC3);
+    const Result a = as_float.process(f32);
+    const Result b = as_double.process(f64);
+    test::expectValidResult(b, frame.size());
+    EXPECT_EQ(cv::countNonZero(a.mask != b.mask), 0);
+  }
+}
+
+// regression-feature-rounds-off-edge: with the segmentation scale below the alignment scale,
+// a feature by the right or bottom edge rounded to the pixel past the segmentation image and
+// its seed was written out of bounds (caught by the sanitizer build).
+TEST(FuzzRegressions, SegmentationScaleBelowAlignmentScaleKeepsSeedsInside) {
+  test::PairSpec spec;
+  spec.object_fraction = 0.15;
+  const test::FramePair pair = test::makePair(spec);
+  Params params;
+  params.segmentation_width = 64;  // alignment at 320
+  Segmenter segmenter(params);
+  segmenter.process(pair.prev);
+  const Result r = segmenter.process(pair.cur);
+  test::expectValidResult(r, pair.cur.size());
+  EXPECT_GT(r.diagnostics.foreground_seeds + r.diagnostics.background_seeds, 0);
+}
+
+// regression-cut-without-edges: free pixels with no free neighbour make a graph without edges,
+// on which OpenCV's GCGraph asserts; each node then takes its stronger terminal.
+TEST(FuzzRegressions, MaxFlowGraphWithoutEdges) {
+  FlowGraph graph;
+  graph.addNode(2.f, 1.f);
+  graph.addNode(0.f, 5.f);
+  graph.addNode(1.f, 1.f);
+  for (const MaxFlowSolver solver : {MaxFlowSolver::kOpenCv, MaxFlowSolver::kBoost}) {
+    EXPECT_EQ(minimumCut(graph, solver), (std::vector<std::uint8_t>{1, 0, 0}));
+    EXPECT_TRUE(minimumCut(FlowGraph(), solver).empty());
+  }
+}
+
+// regression-huge-image-header: cv::imread throws cv::Exception (instead of returning an empty
+// image) when a header claims a width beyond OpenCV's limit; the readers promise
+// std::runtime_error naming the file, and the CLI a one-line error.
+TEST(FuzzRegressions, ImageHeaderBeyondOpenCvLimitsIsAnUnreadableFile) {
+  test::TempDir dir;
+  const std::string path = dir / "frames/00000.pgm";
+  std::filesystem::create_directories(dir / "frames");
+  std::ofstream(path, std::ios::binary) << "P5\n2000000 1\n255\n" << std::string(16, '\x7f');
+  EXPECT_THROW(cv::imread(path), cv::Exception);  // what made the file special
+
+  EXPECT_THROW(readMask(path), std::runtime_error);
+  const std::unique_ptr<FrameSource> source = FrameSource::open(dir / "frames");
+  cv::Mat frame;
+  EXPECT_THROW(source->read(&frame), std::runtime_error);
+  const auto run = test::runCli("segment " + (dir / "frames") + " -o " + (dir / "out") + " -q");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_EQ(run.output, "movseg: error: cannot decode image '" + path + "'\n");
+}
+
+}  // namespace
+}  // namespace movseg

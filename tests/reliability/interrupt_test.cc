@@ -1,0 +1,119 @@
+// A run stopped by SIGINT or SIGTERM midway leaves only complete files, says so in one line and
+// exits with 130.
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "reliability/reliability_fixture.h"
+#include "test_support.h"
+
+namespace movseg {
+namespace {
+namespace fs = std::filesystem;
+
+constexpr int kFrames = 150;
+
+// `movseg ARGS...` started in the background, its stdout and stderr going to `log`.
+pid_t startCli(const std::vector<std::string>& args, const std::string& log) {
+  std::vector<char*> argv{const_cast<char*>(MOVSEG_CLI_PATH)};
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  pid_t pid = -1;
+  const int error = posix_spawn(&pid, MOVSEG_CLI_PATH, &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  return error == 0 ? pid : -1;
+}
+
+bool waitForFile(const std::string& path, std::chrono::seconds limit) {
+  const auto end = std::chrono::steady_clock::now() + limit;
+  while (!fs::exists(path)) {
+    if (std::chrono::steady_clock::now() > end) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return true;
+}
+
+std::string textOf(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+class Interrupt : public ::testing::TestWithParam<int> {
+ protected:
+  static void SetUpTestSuite() {
+    clip_ = new test::TempDir;
+    const auto run = test::runCli("synth -o " + (*clip_ / "clip") + " --frames " +
+                                  std::to_string(kFrames) + " --size 320x240");
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+  }
+  static void TearDownTestSuite() { delete clip_; }
+  static test::TempDir* clip_;
+};
+test::TempDir* Interrupt::clip_ = nullptr;
+
+TEST_P(Interrupt, MidwayLeavesCompleteFilesAndExits130) {
+  test::TempDir dir;
+  const std::string out = dir / "out", stats = dir / "out/stats.jsonl";
+  const pid_t pid = startCli({"segment", *clip_ / "clip/frames", "-o", out, "--stats", stats, "-q"},
+                             dir / "log.txt");
+  ASSERT_GT(pid, 0);
+  // The sixth mask exists: the run is midway, its signal handler installed.
+  const bool midway = waitForFile(out + "/00005.png", std::chrono::seconds(120));
+  kill(pid, GetParam());
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(midway);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+
+  int masks = 0;
+  for (const std::string& name : test::filesIn(out)) {
+    if (name == "stats.jsonl") continue;
+    ASSERT_EQ(fs::path(name).extension(), ".png") << name;  // no *.part left behind
+    const cv::Mat mask = cv::imread(out + "/" + name, cv::IMREAD_UNCHANGED);
+    ASSERT_FALSE(mask.empty()) << name;
+    EXPECT_EQ(mask.size(), cv::Size(320, 240)) << name;
+    ++masks;
+  }
+  EXPECT_GE(masks, 6);
+  EXPECT_LT(masks, kFrames);
+  EXPECT_EQ(textOf(dir / "log.txt"), "movseg: interrupted after " + std::to_string(masks) +
+                                         " frames; the files written so far are complete\n");
+  std::ifstream lines(stats);
+  std::string line;
+  int frame = 0;
+  while (std::getline(lines, line)) {
+    EXPECT_EQ(nlohmann::json::parse(line).at("frame").get<int>(), frame) << line;
+    ++frame;
+  }
+  EXPECT_EQ(frame, masks);
+}
+
+std::string signalName(const ::testing::TestParamInfo<int>& signal) {
+  return signal.param == SIGINT ? "SIGINT" : "SIGTERM";
+}
+
+INSTANTIATE_TEST_SUITE_P(Signals, Interrupt, ::testing::Values(SIGINT, SIGTERM), signalName);
+
+}  // namespace
+}  // namespace movseg
