@@ -29,8 +29,8 @@ run: deps
 test: deps
 	@$(MAKE) --no-print-directory build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
-	@$(MAKE) --no-print-directory test-sanitize
 	@$(MAKE) --no-print-directory test-fuzz
+	@$(MAKE) --no-print-directory test-sanitize
 
 # The whole test suite built with AddressSanitizer and UndefinedBehaviorSanitizer; the first
 # report aborts its test.
