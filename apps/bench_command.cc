@@ -73,7 +73,7 @@ BenchRow benchOne(const GtSequence& sequence, const std::string& method, const B
   segment.resize = parseSize(options.size);
   const SegmentSummary summary = runSegmentation(segment);
   BenchRow row{sequence.name, method, summarize(scoreSequence(sequence, segment.output_dir)),
-               median(summary.frame_ms)};
+               summary.frame_ms.median()};
   fs::remove_all(segment.output_dir);
   return row;
 }

@@ -1,6 +1,8 @@
 #include "params_options.h"
 
+#include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -47,7 +49,14 @@ void setParam(Params* params, const std::string& assignment) {
     }
     throw CLI::ValidationError("--set", "'" + value + "' is not a number for " + name);
   };
-  auto integer = [&]() { return static_cast<int>(number()); };
+  auto integer = [&]() {
+    const double v = number();
+    if (v != std::floor(v) || v < std::numeric_limits<int>::min() ||
+        v > std::numeric_limits<int>::max()) {
+      throw CLI::ValidationError("--set", "'" + value + "' is not an integer for " + name);
+    }
+    return static_cast<int>(v);
+  };
   auto boolean = [&]() { return value == "1" || value == "true" || value == "on"; };
   const std::map<std::string, std::function<void()>> setters{
       {"static_camera", [&] { params->static_camera = boolean(); }},

@@ -200,13 +200,6 @@ cv::Mat resizedFrame(const cv::Mat& frame, cv::Size size) {
 
 }  // namespace
 
-double median(std::vector<double> values) {
-  if (values.empty()) return 0;
-  const auto mid = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), mid, values.end());
-  return *mid;
-}
-
 SegmentSummary runSegmentation(const SegmentOptions& options) {
   LiveWindow window(options.show);
   Params params = options.params;
@@ -244,7 +237,7 @@ SegmentSummary runSegmentation(const SegmentOptions& options) {
     if (result.mask.size() != frame.size()) {
       cv::resize(result.mask, result.mask, frame.size(), 0, 0, cv::INTER_NEAREST);
     }
-    summary.frame_ms.push_back(result.diagnostics.timings.total_ms);
+    summary.frame_ms.add(result.diagnostics.timings.total_ms);
     summary.resets += result.diagnostics.reset;
     summary.motion_fallbacks += result.diagnostics.motion_fallback;
     if (!options.output_dir.empty()) {
@@ -275,7 +268,7 @@ SegmentSummary runSegmentation(const SegmentOptions& options) {
 }
 
 std::string describeSummary(const SegmentSummary& summary) {
-  const double ms = median(summary.frame_ms);
+  const double ms = summary.frame_ms.median();
   char line[160];
   std::snprintf(line, sizeof line, "%d frames in %.2f s (%.1f fps overall, median %.2f ms/frame)",
                 summary.frames, summary.seconds,

@@ -6,6 +6,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "latency.h"
 #include "movseg/params.h"
 
 namespace movseg::cli {
@@ -28,7 +29,7 @@ struct SegmentOptions {
 struct SegmentSummary {
   int frames = 0;
   double seconds = 0;               // wall time of the whole run
-  std::vector<double> frame_ms;     // per-frame process() time
+  LatencyHistogram frame_ms;        // per-frame process() time
   int resets = 0;
   int motion_fallbacks = 0;
   bool interrupted = false;
@@ -43,7 +44,5 @@ SegmentSummary runSegmentation(const SegmentOptions& options);
 
 // "123 frames in 1.2 s (101.3 fps, median 9.1 ms/frame)".
 std::string describeSummary(const SegmentSummary& summary);
-
-double median(std::vector<double> values);
 
 }  // namespace movseg::cli
