@@ -22,8 +22,8 @@ struct Params {
   int alignment_width = 320;
   // Corner features (Shi–Tomasi, ref. [15]) per frame, at the alignment scale.
   int max_corners = 500;
-  // Edge features: at most one Canny edge point per cell of this many pixels (alignment scale),
-  // so that textured regions do not hog the features.
+  // Edge features: in every cell of this many pixels (alignment scale) the pixel of strongest
+  // gradient, when it is a clear edge, so that textured regions do not hog the features.
   int edge_cell = 4;
   // At most this many of the features are tracked for alignment (an even subsample; all of
   // them are classified in §3.2): a 6-parameter model needs a few hundred good tracks, and LK
@@ -44,7 +44,8 @@ struct Params {
   int ransac_grid = 3;
   // Outer layer of Algorithm 1: stop when the background set is stable or after this many.
   int max_outer_iterations = 5;
-  // Start each pair from the previous pair's model (§4.1 speed-up): its inliers seed RANSAC.
+  // Start each pair from the previous pair's model (§4.1 speed-up): it predicts where LK looks
+  // for each feature and is RANSAC's first hypothesis.
   bool warm_start = true;
   // Seed of every random choice; equal seeds give bit-identical masks.
   std::uint64_t seed = 0;
