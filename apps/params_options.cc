@@ -28,7 +28,9 @@ void addParamsOptions(CLI::App* command, Params* params) {
   command->add_option("--segmentation-width", params->segmentation_width,
                       "Width for the geodesic cut (0 = native)")
       ->capture_default_str();
-  command->add_option("--seed", params->seed, "Seed of the random choices")->capture_default_str();
+  command->add_option("--seed", params->seed, "Seed of the random choices")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   command->add_option_function<std::vector<std::string>>(
       "--set", [params](const std::vector<std::string>& items) {
         for (const std::string& item : items) setParam(params, item);
