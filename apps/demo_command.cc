@@ -58,7 +58,7 @@ void addDemoCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--frames", options->synth.frames, "Frames of the clip")->capture_default_str();
   cmd->add_option("--clip-seed", options->synth.seed, "Seed of the synthetic clip")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kNotNegative)
       ->capture_default_str();
   addParamsOptions(cmd, &options->params);
   cmd->callback([options] { runDemo(*options); });

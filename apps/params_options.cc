@@ -29,7 +29,7 @@ void addParamsOptions(CLI::App* command, Params* params) {
                       "Width for the geodesic cut (0 = native)")
       ->capture_default_str();
   command->add_option("--seed", params->seed, "Seed of the random choices")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kNotNegative)
       ->capture_default_str();
   command->add_option_function<std::vector<std::string>>(
       "--set", [params](const std::vector<std::string>& items) {

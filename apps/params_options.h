@@ -9,6 +9,14 @@
 
 namespace movseg::cli {
 
+// For counts and seeds: rejects a leading minus sign with a short message (CLI11's
+// NonNegativeNumber would print the largest double as the range's end).
+inline const CLI::Validator kNotNegative(
+    [](std::string& input) -> std::string {
+      return !input.empty() && input[0] == '-' ? "must not be negative" : "";
+    },
+    "NOT NEGATIVE");
+
 void addParamsOptions(CLI::App* command, Params* params);
 
 // Applies "name=value" to the Params field of that name; throws CLI::ValidationError.

@@ -26,7 +26,7 @@ void addSegmentCommand(CLI::App& app) {
                 "Show the overlay in a live window (needs a display; q or Esc stops)");
   cmd->add_flag("--debug", options->debug, "Write each stage's pictures to OUTDIR/debug/<stage>/");
   cmd->add_option("--max-frames", options->max_frames, "Stop after N frames")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kNotNegative);
   cmd->add_option("--stats", options->stats_file, "Per-frame diagnostics as JSON Lines");
   cmd->add_option("--method", options->method, "Segmentation method")
       ->check(CLI::IsMember(methodNames()))
