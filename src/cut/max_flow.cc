@@ -1,11 +1,16 @@
 #include "cut/max_flow.h"
 
-// Boost.Graph's templates trip GCC's -Wmaybe-uninitialized inside Boost itself.
+// Boost.Graph's templates trip GCC's -Wmaybe-uninitialized inside Boost itself (clang has no
+// such warning).
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 #include <boost/graph/adjacency_list.hpp>
 #include <boost/graph/boykov_kolmogorov_max_flow.hpp>
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
+#endif
 #include <opencv2/core.hpp>  // gcgraph.hpp needs it first
 #include <opencv2/imgproc/detail/gcgraph.hpp>
 
