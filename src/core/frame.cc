@@ -89,4 +89,12 @@ PreparedFrame prepareFrame(const cv::Mat& bgr, const Params& params) {
   return f;
 }
 
+cv::Mat upscaledMask(const cv::Mat& mask, cv::Size size) {
+  if (mask.size() == size) return mask;
+  cv::Mat out;
+  cv::resize(mask, out, size, 0, 0, cv::INTER_LINEAR);
+  cv::threshold(out, out, 127, 255, cv::THRESH_BINARY);
+  return out;
+}
+
 }  // namespace movseg

@@ -31,4 +31,8 @@ struct PreparedFrame {
 
 PreparedFrame prepareFrame(const cv::Mat& bgr, const Params& params);
 
+// A 0/255 mask resized to `size` by bilinear interpolation and re-thresholded, so that a mask
+// computed at a working scale has smooth rather than blocky boundaries at full resolution.
+cv::Mat upscaledMask(const cv::Mat& mask, cv::Size size);
+
 }  // namespace movseg

@@ -10,7 +10,6 @@
 #include "core/camera_tracker.h"
 #include "core/frame.h"
 #include "core/timing.h"
-#include "methods/method_support.h"
 #include "cut/cut_debug.h"
 #include "cut/graph_cut.h"
 #include "motion/compensation.h"

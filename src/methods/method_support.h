@@ -1,5 +1,4 @@
-// What the methods share: scaling a working-scale mask back to the frame's size, and the frame
-// loop of the methods that follow the camera.
+// What the methods share: the frame loop of the methods that follow the camera.
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -9,10 +8,6 @@
 #include "methods/method.h"
 
 namespace movseg {
-
-// A 0/255 mask resized to `size` by bilinear interpolation and re-thresholded, so that a mask
-// computed at a working scale has smooth rather than blocky boundaries at full resolution.
-cv::Mat upscaledMask(const cv::Mat& mask, cv::Size size);
 
 // A method built on §3.1: process() converts the frame, advances the CameraTracker (filling the
 // motion diagnostics), asks maskFor() for the mask, scales it to the frame and times the call.
