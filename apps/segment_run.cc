@@ -18,6 +18,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "core/frame.h"
 #include "io/atomic_write.h"
 #include "io/frame_source.h"
 #include "io/overlay.h"
@@ -191,13 +192,6 @@ void writeDebugPictures(const std::string& folder, int index, const Result& resu
   }
 }
 
-cv::Mat resizedFrame(const cv::Mat& frame, cv::Size size) {
-  if (size.empty() || frame.size() == size) return frame;
-  cv::Mat out;
-  cv::resize(frame, out, size, 0, 0, cv::INTER_AREA);
-  return out;
-}
-
 }  // namespace
 
 SegmentSummary runSegmentation(const SegmentOptions& options) {
@@ -230,7 +224,7 @@ SegmentSummary runSegmentation(const SegmentOptions& options) {
     const int index = summary.frames;
     Result result;
     try {
-      result = method->process(resizedFrame(frame, options.resize));
+      result = method->process(resizedTo(frame, options.resize));
     } catch (const std::invalid_argument& e) {
       throw std::runtime_error(source->describe() + ": " + e.what());
     }

@@ -43,6 +43,13 @@ cv::Mat toBgr8(const cv::Mat& frame) {
   return bgr;
 }
 
+cv::Mat resizedTo(const cv::Mat& image, cv::Size size) {
+  if (size.empty() || image.size() == size) return image;
+  cv::Mat out;
+  cv::resize(image, out, size, 0, 0, cv::INTER_AREA);
+  return out;
+}
+
 cv::Size scaledSize(cv::Size size, int width) {
   if (width <= 0 || width >= size.width) return size;
   const double scale = static_cast<double>(width) / size.width;
@@ -50,13 +57,6 @@ cv::Size scaledSize(cv::Size size, int width) {
 }
 
 namespace {
-
-cv::Mat resizedTo(const cv::Mat& image, cv::Size size) {
-  if (image.size() == size) return image;
-  cv::Mat out;
-  cv::resize(image, out, size, 0, 0, cv::INTER_AREA);
-  return out;
-}
 
 // LK needs a window's worth of pixels at the base level; smaller frames are not tracked.
 bool trackable(const cv::Mat& grey, const Params& params) {

@@ -14,6 +14,9 @@ namespace movseg {
 // an unsupported channel count.
 cv::Mat toBgr8(const cv::Mat& frame);
 
+// `image` resized to `size` (area interpolation); the same Mat when `size` is empty or equal.
+cv::Mat resizedTo(const cv::Mat& image, cv::Size size);
+
 // The size of `size` scaled to `width` (0 = unchanged), never upscaled, at least 1x1.
 cv::Size scaledSize(cv::Size size, int width);
 

@@ -30,9 +30,8 @@ class Mog2Method : public Method {
       result.diagnostics.reset = !size_.empty();
       size_ = bgr.size();
     }
-    const PreparedFrame cur = prepareFrame(bgr, params_);
     cv::Mat mask;
-    mog2_->apply(cur.seg_bgr, mask);
+    mog2_->apply(resizedTo(bgr, scaledSize(bgr.size(), params_.segmentation_width)), mask);
     result.mask = upscaledMask(mask, bgr.size());
     result.diagnostics.timings.total_ms = millisecondsSince(start);
     return result;
