@@ -16,7 +16,7 @@
 #include "commands.h"
 #include "eval/dataset.h"
 #include "io/atomic_write.h"
-#include "methods/method.h"
+#include "movseg/fields.h"
 #include "params_options.h"
 #include "progress.h"
 #include "segment_run.h"
@@ -28,7 +28,7 @@ namespace fs = std::filesystem;
 
 struct BenchOptions {
   std::string data;
-  std::vector<std::string> methods = methodNames();
+  std::vector<std::string> methods = enumNames<Method>();
   std::string size;  // "WxH" or empty (native)
   std::string json_file;
   Params params;
@@ -67,8 +67,8 @@ BenchRow benchOne(const GtSequence& sequence, const std::string& method, const B
   SegmentOptions segment;
   segment.input = sequence.frames_dir;
   segment.output_dir = (fs::path(scratch) / method / sequence.name).string();
-  segment.method = method;
   segment.params = options.params;
+  setParam(&segment.params, "method", method);
   segment.quiet = true;
   segment.resize = parseSize(options.size);
   const SegmentSummary summary = runSegmentation(segment);
@@ -122,7 +122,7 @@ nlohmann::json rowsJson(const std::vector<BenchRow>& rows) {
 }
 
 void runBench(const BenchOptions& options) {
-  for (const std::string& method : options.methods) makeMethod(method, options.params);  // validate
+  options.params.check();
   const std::vector<GtSequence> sequences = loadGroundTruth(options.data, GtFormat::kAuto);
   for (const GtSequence& s : sequences) {
     if (s.frames_dir.empty()) {
@@ -167,10 +167,10 @@ void addBenchCommand(CLI::App& app) {
       ->required();
   cmd->add_option("--methods", options->methods, "Comma-separated methods")
       ->delimiter(',')
-      ->check(CLI::IsMember(methodNames()));
+      ->check(CLI::IsMember(enumNames<Method>()));
   cmd->add_option("--size", options->size, "Resize frames to WxH before segmenting");
   cmd->add_option("--json", options->json_file, "Write the table as JSON");
-  addParamsOptions(cmd, &options->params);
+  addParamsOptions(cmd, &options->params, {"method"});
   cmd->callback([options] { runBench(*options); });
 }
 

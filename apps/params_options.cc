@@ -1,92 +1,80 @@
 #include "params_options.h"
 
-#include <cmath>
-#include <functional>
-#include <limits>
 #include <map>
-#include <string>
+#include <stdexcept>
 #include <vector>
 
-namespace movseg::cli {
+#include "movseg/fields.h"
 
-void addParamsOptions(CLI::App* command, Params* params) {
-  const std::map<std::string, MotionModel> models{{"affine", MotionModel::kAffine},
-                                                  {"homography", MotionModel::kHomography}};
-  command->add_flag("--static", params->static_camera, "Static camera: skip alignment");
-  command->add_option("--model", params->motion_model, "Camera model")
-      ->transform(CLI::CheckedTransformer(models, CLI::ignore_case))
-      ->capture_default_str();
-  command->add_option("--lambda", params->lambda, "Threshold of eq. (3) on d (8-bit units^2)")
-      ->capture_default_str();
-  command->add_option("--gmm-k", params->gmm_clusters, "Clusters per colour GMM (K)")
-      ->capture_default_str();
-  command->add_option("--cut-weight", params->cut_weight, "Pairwise weight of eq. (6)")
-      ->capture_default_str();
-  command->add_option("--alignment-width", params->alignment_width,
-                      "Width for alignment (0 = native)")
-      ->capture_default_str();
-  command->add_option("--segmentation-width", params->segmentation_width,
-                      "Width for the geodesic cut (0 = native)")
-      ->capture_default_str();
-  command->add_option("--seed", params->seed, "Seed of the random choices")
-      ->check(kNotNegative)
-      ->capture_default_str();
-  command->add_option_function<std::vector<std::string>>(
-      "--set", [params](const std::vector<std::string>& items) {
-        for (const std::string& item : items) setParam(params, item);
-      },
-      "Set any Params field: --set name=value (repeatable; see include/movseg/params.h)");
+namespace movseg::cli {
+namespace {
+
+// The shorter names README and earlier versions use, kept beside the generated ones.
+const std::map<std::string, std::string> kAliases{
+    {"static_camera", "--static"}, {"motion_model", "--model"}, {"gmm_clusters", "--gmm-k"}};
+
+std::string optionName(const std::string& field) {
+  std::string name = "--" + field;
+  for (char& c : name) c = c == '_' ? '-' : c;
+  const auto alias = kAliases.find(field);
+  return alias == kAliases.end() ? name : name + "," + alias->second;
 }
 
-void setParam(Params* params, const std::string& assignment) {
-  const size_t eq = assignment.find('=');
-  if (eq == std::string::npos) throw CLI::ValidationError("--set", "expected name=value, got '" + assignment + "'");
-  const std::string name = assignment.substr(0, eq), value = assignment.substr(eq + 1);
-  auto number = [&]() {
-    try {
-      size_t used = 0;
-      const double v = std::stod(value, &used);
-      if (used == value.size()) return v;
-    } catch (const std::exception&) {
+std::string typeName(const FieldInfo& field) {
+  switch (field.type) {
+    case FieldType::kBool: return "BOOL";
+    case FieldType::kInt: return "INT";
+    case FieldType::kUnsigned: return "UINT";
+    case FieldType::kReal: return "REAL";
+    case FieldType::kChoice: return "NAME";
+    case FieldType::kMatrix: break;
+  }
+  return "VALUE";
+}
+
+// Runs movseg::setParam, reporting a bad value the way CLI11 reports its own errors.
+void set(Params* params, const std::string& name, const std::string& value) {
+  try {
+    setParam(params, name, value);
+  } catch (const std::invalid_argument& e) {
+    throw CLI::ValidationError(e.what());
+  }
+}
+
+}  // namespace
+
+void addParamsOptions(CLI::App* command, Params* params, const std::set<std::string>& except) {
+  const Params defaults;
+  for (const FieldInfo& field : paramFields()) {
+    if (except.count(field.name) > 0) continue;
+    const std::string& name = field.name;
+    const auto apply = [params, name](const std::string& value) { set(params, name, value); };
+    const FieldValue default_value = paramValue(defaults, name);
+    // A flag that is on by default says how to turn it off.
+    const bool on = field.type == FieldType::kBool && std::get<bool>(default_value);
+    const std::string description = helpText(field) + (on ? " (on; =false turns it off)" : "");
+    CLI::Option* option = field.type == FieldType::kBool
+                              ? command->add_flag(optionName(name), description)
+                              : command->add_option(optionName(name), description);
+    option->each(apply)->group("Parameters (include/movseg/params.def)");
+    if (field.type != FieldType::kBool) {
+      option->type_name(typeName(field))->default_str(toText(default_value));
     }
-    throw CLI::ValidationError("--set", "'" + value + "' is not a number for " + name);
-  };
-  auto integer = [&]() {
-    const double v = number();
-    if (v != std::floor(v) || v < std::numeric_limits<int>::min() ||
-        v > std::numeric_limits<int>::max()) {
-      throw CLI::ValidationError("--set", "'" + value + "' is not an integer for " + name);
-    }
-    return static_cast<int>(v);
-  };
-  auto boolean = [&]() { return value == "1" || value == "true" || value == "on"; };
-  const std::map<std::string, std::function<void()>> setters{
-      {"static_camera", [&] { params->static_camera = boolean(); }},
-      {"alignment_width", [&] { params->alignment_width = integer(); }},
-      {"max_corners", [&] { params->max_corners = integer(); }},
-      {"edge_cell", [&] { params->edge_cell = integer(); }},
-      {"max_tracked_features", [&] { params->max_tracked_features = integer(); }},
-      {"lk_window", [&] { params->lk_window = integer(); }},
-      {"lk_levels", [&] { params->lk_levels = integer(); }},
-      {"zncc_window", [&] { params->zncc_window = integer(); }},
-      {"ransac_iterations", [&] { params->ransac_iterations = integer(); }},
-      {"ransac_threshold", [&] { params->ransac_threshold = number(); }},
-      {"ransac_grid", [&] { params->ransac_grid = integer(); }},
-      {"max_outer_iterations", [&] { params->max_outer_iterations = integer(); }},
-      {"warm_start", [&] { params->warm_start = boolean(); }},
-      {"lambda", [&] { params->lambda = number(); }},
-      {"lambda_residual_factor", [&] { params->lambda_residual_factor = number(); }},
-      {"difference_blur", [&] { params->difference_blur = number(); }},
-      {"gmm_clusters", [&] { params->gmm_clusters = integer(); }},
-      {"gmm_refine", [&] { params->gmm_refine = boolean(); }},
-      {"cut_weight", [&] { params->cut_weight = number(); }},
-      {"geodesic_gamma", [&] { params->geodesic_gamma = number(); }},
-      {"cut_band", [&] { params->cut_band = integer(); }},
-      {"segmentation_width", [&] { params->segmentation_width = integer(); }},
-  };
-  const auto setter = setters.find(name);
-  if (setter == setters.end()) throw CLI::ValidationError("--set", "unknown parameter '" + name + "'");
-  setter->second();
+  }
+  command
+      ->add_option_function<std::vector<std::string>>(
+          "--set",
+          [params](const std::vector<std::string>& items) {
+            for (const std::string& item : items) {
+              const size_t eq = item.find('=');
+              if (eq == std::string::npos) {
+                throw CLI::ValidationError("--set: expected name=value, got '" + item + "'");
+              }
+              set(params, item.substr(0, eq), item.substr(eq + 1));
+            }
+          },
+          "Set any parameter by its name: --set name=value (repeatable)")
+      ->group("Parameters (include/movseg/params.def)");
 }
 
 }  // namespace movseg::cli

@@ -1,6 +1,9 @@
-// The Params fields a user tunes from the command line, shared by segment, demo and bench.
+// Every movseg::Params field as a command-line option, generated from the field table
+// (movseg/params.def through movseg/fields.h): --lk-window 11, --static-camera, ..., and
+// --set name=value for the same. Shared by segment, demo and bench.
 #pragma once
 
+#include <set>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -17,9 +20,9 @@ inline const CLI::Validator kNotNegative(
     },
     "NOT NEGATIVE");
 
-void addParamsOptions(CLI::App* command, Params* params);
-
-// Applies "name=value" to the Params field of that name; throws CLI::ValidationError.
-void setParam(Params* params, const std::string& assignment);
+// Adds an option per field of Params except those named in `except`, and --set. Values are
+// parsed and range-checked by movseg::setParam as they are read, so a bad value is refused by
+// name before anything runs.
+void addParamsOptions(CLI::App* command, Params* params, const std::set<std::string>& except = {});
 
 }  // namespace movseg::cli

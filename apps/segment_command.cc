@@ -3,7 +3,6 @@
 #include <memory>
 
 #include "commands.h"
-#include "methods/method.h"
 #include "params_options.h"
 #include "segment_run.h"
 
@@ -28,9 +27,6 @@ void addSegmentCommand(CLI::App& app) {
   cmd->add_option("--max-frames", options->max_frames, "Stop after N frames")
       ->check(kNotNegative);
   cmd->add_option("--stats", options->stats_file, "Per-frame diagnostics as JSON Lines");
-  cmd->add_option("--method", options->method, "Segmentation method")
-      ->check(CLI::IsMember(methodNames()))
-      ->capture_default_str();
   cmd->add_flag("-q,--quiet", options->quiet, "No progress bar and no summary");
   addParamsOptions(cmd, &options->params);
   cmd->callback([options, cmd] {

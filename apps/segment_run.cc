@@ -19,11 +19,12 @@
 #include <opencv2/videoio.hpp>
 
 #include "core/frame.h"
+#include "movseg/fields.h"
+#include "movseg/segmenter.h"
 #include "io/atomic_write.h"
 #include "io/frame_source.h"
 #include "io/overlay.h"
 #include "live_window.h"
-#include "methods/method.h"
 #include "progress.h"
 
 namespace movseg::cli {
@@ -66,34 +67,24 @@ std::string frameName(int index) {
   return name;
 }
 
-nlohmann::json modelRows(const Diagnostics& d) {
-  nlohmann::json rows = nlohmann::json::array();
-  for (int r = 0; r < (d.model_is_affine ? 2 : 3); ++r) {
-    rows.push_back({d.model(r, 0), d.model(r, 1), d.model(r, 2)});
+// A field's value as JSON; a camera model as its three rows.
+struct ToJson {
+  nlohmann::json operator()(const cv::Matx33d& m) const {
+    return {{m(0, 0), m(0, 1), m(0, 2)}, {m(1, 0), m(1, 1), m(1, 2)}, {m(2, 0), m(2, 1), m(2, 2)}};
   }
-  return rows;
-}
+  template <typename T>
+  nlohmann::json operator()(const T& value) const {
+    return value;
+  }
+};
 
+// One line of --stats: the frame index and every field of diagnostics.def, by its name.
 nlohmann::json statsLine(int index, const Diagnostics& d) {
-  return {
-      {"frame", index},
-      {"model", modelRows(d)},
-      {"features", d.features},
-      {"tracks", d.tracks},
-      {"matches", d.matches},
-      {"background", d.background_matches},
-      {"foreground", d.foreground_matches},
-      {"outer_iterations", d.outer_iterations},
-      {"seeds", {{"foreground", d.foreground_seeds}, {"background", d.background_seeds},
-                 {"unknown", d.unknown_seeds}}},
-      {"lambda", d.lambda},
-      {"flags", {{"first_frame", d.first_frame}, {"reset", d.reset},
-                 {"motion_fallback", d.motion_fallback},
-                 {"no_background_seeds", d.no_background_seeds}}},
-      {"ms", {{"prepare", d.timings.prepare_ms}, {"motion", d.timings.motion_ms},
-              {"classify", d.timings.classify_ms}, {"cut", d.timings.cut_ms},
-              {"total", d.timings.total_ms}}},
-  };
+  nlohmann::json line{{"frame", index}};
+  for (const FieldInfo& field : diagnosticFields()) {
+    line[field.name] = std::visit(ToJson{}, diagnosticValue(d, field.name));
+  }
+  return line;
 }
 
 // JSON Lines written to FILE.part and renamed to FILE when the run ends (also on a signal).
@@ -177,7 +168,7 @@ class OverlayWriter {
 };
 
 std::string hudLine(int index, const Diagnostics& d) {
-  const double ms = d.timings.total_ms;
+  const double ms = d.total_ms;
   char hud[64];
   std::snprintf(hud, sizeof hud, "frame %d  %.0f fps", index, ms > 0 ? 1000.0 / ms : 0.0);
   return hud;
@@ -198,7 +189,7 @@ SegmentSummary runSegmentation(const SegmentOptions& options) {
   LiveWindow window(options.show);
   Params params = options.params;
   params.debug_images = params.debug_images || options.debug;
-  std::unique_ptr<Method> method = makeMethod(options.method, params);
+  Segmenter segmenter(params);
   std::unique_ptr<FrameSource> source = FrameSource::open(options.input);
   if (!options.output_dir.empty()) makeFolder(options.output_dir);
   const std::string debug_dir = (fs::path(options.output_dir) / "debug").string();
@@ -224,14 +215,14 @@ SegmentSummary runSegmentation(const SegmentOptions& options) {
     const int index = summary.frames;
     Result result;
     try {
-      result = method->process(resizedTo(frame, options.resize));
+      result = segmenter.process(resizedTo(frame, options.resize));
     } catch (const std::invalid_argument& e) {
       throw std::runtime_error(source->describe() + ": " + e.what());
     }
     if (result.mask.size() != frame.size()) {
       cv::resize(result.mask, result.mask, frame.size(), 0, 0, cv::INTER_NEAREST);
     }
-    summary.frame_ms.add(result.diagnostics.timings.total_ms);
+    summary.frame_ms.add(result.diagnostics.total_ms);
     summary.resets += result.diagnostics.reset;
     summary.motion_fallbacks += result.diagnostics.motion_fallback;
     if (!options.output_dir.empty()) {

@@ -19,8 +19,7 @@ struct SegmentOptions {
   std::string stats_file;     // JSON Lines, one object per frame; "" none
   bool debug = false;         // write each stage's pictures under output_dir/debug/
   int max_frames = -1;        // < 0: all
-  std::string method = "paper";
-  Params params;
+  Params params;              // params.method chooses the pipeline
   bool quiet = false;         // no progress, no summary line
   cv::Size resize;            // non-empty: frames are resized to this before segmentation and
                               // the masks back to the frame's own size (bench --size)

@@ -1,17 +1,16 @@
 // Per-stage and whole-pipeline timings on synthetic frame pairs at 320x240 and 640x480.
 //   build/bench/movseg_bench [--benchmark_filter=...]
-// Each stage runs on the output of the previous ones for the same pair, exactly as in
-// Segmenter::process, so the stage times add up to the pipeline's.
+// Each stage runs on the output of the previous ones for the same pair, exactly as in the
+// paper's pipeline (src/pipelines/paper.cc), so the stage times add up to the pipeline's.
 #include <benchmark/benchmark.h>
 
 #include <opencv2/core/utility.hpp>
 
 #include "classify/classify.h"
-#include "core/camera_tracker.h"
 #include "core/frame.h"
 #include "cut/geodesic.h"
 #include "cut/graph_cut.h"
-#include "motion/compensation.h"
+#include "motion/camera_tracker.h"
 #include "motion/model.h"
 #include "movseg/segmenter.h"
 #include "synth/synth.h"
@@ -31,26 +30,32 @@ Pair synthPair(const benchmark::State& state) {
   return {sequence.frame(10).frame, sequence.frame(11).frame};
 }
 
-// Everything a stage needs from the stages before it.
+// Everything a stage needs from the stages before it, computed as the paper's pipeline does.
 struct StageInputs {
   Params params;
-  PreparedFrame prev, cur;
-  MotionEstimate motion;
+  CameraTracker tracker{params};
+  CameraTracker::Step step;
+  const TrackedFrame* prev = nullptr;
+  const TrackedFrame* cur = nullptr;
   cv::Mat difference;
+  std::vector<cv::Point2f> points;  // the current frame's features, segmentation scale
   std::vector<cv::Point> fg, bg;
 
   explicit StageInputs(const Pair& pair) {
-    prev = prepareFrame(pair.prev, params);
-    cur = prepareFrame(pair.cur, params);
-    motion = estimateCameraMotion(prev, cur, cv::Matx33d::eye(), params, 0);
-    const double s = cur.seg_scale / cur.align_scale;
-    difference = compensatedDifference(prev.seg_smooth, cur.seg_smooth, rescaleModel(motion.model, s));
-    const double lambda = chooseLambda(difference, staticPoints(motion, cur, cur.seg_scale), params);
-    std::vector<cv::Point2f> points;
-    for (const cv::Point2f& p : cur.features) points.push_back(p * static_cast<float>(s));
-    const std::vector<FeatureLabel> labels = classifyByDifference(difference, points, lambda);
+    tracker.advance(pair.prev.clone());
+    step = tracker.advance(pair.cur.clone());
+    prev = step.previous;
+    cur = step.current;
+    const PreparedFrame& image = cur->image;
+    difference = compensatedDifference(prev->image.seg_smooth, image.seg_smooth,
+                                       rescaleModel(step.model, image.seg_scale));
+    const auto s = static_cast<float>(image.seg_scale / image.align_scale);
+    for (const cv::Point2f& p : cur->alignment.features) points.push_back(p * s);
+    const FeatureClasses classes = classifyFeatures(
+        difference, image.seg_bgr, points, step.staticPoints(image.seg_scale), params);
     for (size_t i = 0; i < points.size(); ++i) {
-      (labels[i] == FeatureLabel::kForeground ? fg : bg).push_back(points[i]);
+      if (classes.labels[i] == FeatureLabel::kForeground) fg.push_back(points[i]);
+      if (classes.labels[i] == FeatureLabel::kBackground) bg.push_back(points[i]);
     }
   }
 };
@@ -58,47 +63,43 @@ struct StageInputs {
 void BM_Prepare(benchmark::State& state) {
   const Pair pair = synthPair(state);
   const Params params;
-  for (auto _ : state) benchmark::DoNotOptimize(prepareFrame(pair.cur, params));
+  for (auto _ : state) {
+    const PreparedFrame frame = prepareFrame(pair.cur, params);
+    benchmark::DoNotOptimize(prepareAlignment(frame.small_grey, params));
+  }
 }
 
 void BM_Motion(benchmark::State& state) {
   const StageInputs in(synthPair(state));
   for (auto _ : state) {
-    benchmark::DoNotOptimize(estimateCameraMotion(in.prev, in.cur, in.motion.model, in.params, 0));
+    benchmark::DoNotOptimize(estimateCameraMotion(in.prev->alignment, in.cur->alignment,
+                                                  in.step.motion.model, in.params, 0));
   }
 }
 
 void BM_Difference(benchmark::State& state) {
   const StageInputs in(synthPair(state));
-  const cv::Matx33d model = rescaleModel(in.motion.model, in.cur.seg_scale / in.cur.align_scale);
+  const PreparedFrame& cur = in.cur->image;
+  const cv::Matx33d model = rescaleModel(in.step.model, cur.seg_scale);
   for (auto _ : state) {
-    benchmark::DoNotOptimize(compensatedDifference(in.prev.seg_smooth, in.cur.seg_smooth, model));
+    benchmark::DoNotOptimize(compensatedDifference(in.prev->image.seg_smooth, cur.seg_smooth, model));
   }
 }
 
 // §3.2: eq. (3) at the features and the GMM refinement.
 void BM_Classify(benchmark::State& state) {
   const StageInputs in(synthPair(state));
-  const double s = in.cur.seg_scale / in.cur.align_scale;
-  std::vector<cv::Point2f> points;
-  std::vector<cv::Vec3f> colours;
-  for (const cv::Point2f& p : in.cur.features) {
-    points.push_back(p * static_cast<float>(s));
-    colours.emplace_back(in.cur.seg_bgr.at<cv::Vec3b>(points.back()));
-  }
+  const PreparedFrame& cur = in.cur->image;
   for (auto _ : state) {
-    const double lambda =
-        chooseLambda(in.difference, staticPoints(in.motion, in.cur, in.cur.seg_scale), in.params);
-    std::vector<FeatureLabel> labels = classifyByDifference(in.difference, points, lambda);
-    refineByColour(colours, in.params.gmm_clusters, &labels);
-    benchmark::DoNotOptimize(labels);
+    benchmark::DoNotOptimize(classifyFeatures(in.difference, cur.seg_bgr, in.points,
+                                              in.step.staticPoints(cur.seg_scale), in.params));
   }
 }
 
 void BM_GeodesicDistances(benchmark::State& state) {
   const StageInputs in(synthPair(state));
   cv::Mat colour;
-  in.cur.seg_bgr.convertTo(colour, CV_32FC3, 1.0 / 255.0);
+  in.cur->image.seg_bgr.convertTo(colour, CV_32FC3, 1.0 / 255.0);
   for (auto _ : state) {
     const GeodesicGrid grid(colour, in.params.geodesic_gamma);
     benchmark::DoNotOptimize(grid.distanceFrom(in.fg, 1));
@@ -113,7 +114,7 @@ void BM_GraphCut(benchmark::State& state) {
   const auto solver = state.range(3) == 0 ? MaxFlowSolver::kOpenCv : MaxFlowSolver::kBoost;
   int nodes = 0;
   for (auto _ : state) {
-    const CutResult cut = geodesicGraphCut(in.cur.seg_bgr, in.fg, in.bg, in.params, solver);
+    const CutResult cut = geodesicGraphCut(in.cur->image.seg_bgr, in.fg, in.bg, in.params, solver);
     nodes = cut.graph_nodes;
   }
   state.counters["graph_nodes"] = nodes;

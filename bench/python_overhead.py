@@ -3,7 +3,7 @@
 Usage: PYTHONPATH=build/python /usr/bin/python3 bench/python_overhead.py [--frames N] [--rounds R]
 
 For every call it compares the wall time seen from Python (converting the numpy frame, the call,
-and reading mask, features, model and timings back) with Result.timings["total_ms"], measured
+and reading mask, features and model back) with Result.diagnostics.total_ms, measured
 inside Segmenter::process. The overhead is the median of their differences; it must stay under
 5 % of the median C++ time. The frames come from `movseg synth` (320x240, camera "mix").
 """
@@ -34,9 +34,9 @@ def measure(frames, rounds):
         for frame in frames:
             start = time.perf_counter()
             result = segmenter.process(frame)
-            _ = (result.mask, result.features, result.model, result.timings)  # what callers read
+            _ = (result.mask, result.features, result.diagnostics.model)  # what callers read
             wall = (time.perf_counter() - start) * 1000
-            inside = result.timings["total_ms"]
+            inside = result.diagnostics.total_ms
             if not result.diagnostics.first_frame:
                 cpp.append(inside)
                 python.append(wall)

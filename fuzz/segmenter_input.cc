@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "fuzz_input.h"
+#include "movseg/fields.h"
 #include "movseg/segmenter.h"
 
 namespace movseg::fuzz {
@@ -41,6 +42,7 @@ Params fuzzedParams(FuzzInput& in) {
   p.warm_start = switches & 4;
   p.gmm_refine = switches & 8;
   p.debug_images = switches & 16;
+  p.method = static_cast<Method>((switches >> 5) % enumNames<Method>().size());
   p.alignment_width = fuzzedWidth(in);
   p.segmentation_width = fuzzedWidth(in);
   p.max_corners = in.range(0, 400);
@@ -181,23 +183,28 @@ cv::Mat fuzzedFrame(FuzzInput& in, cv::Size size, const cv::Mat& previous) {
   return frame;
 }
 
-bool finite(const cv::Matx33d& m) {
-  return std::all_of(m.val, m.val + 9, [](double v) { return std::isfinite(v); });
-}
+// Every diagnostic of diagnostics.def: counts, thresholds and times finite and not negative,
+// the camera model finite.
+struct SaneDiagnostic {
+  bool operator()(bool) const { return true; }
+  bool operator()(int v) const { return v >= 0; }
+  bool operator()(std::uint64_t) const { return true; }
+  bool operator()(double v) const { return std::isfinite(v) && v >= 0; }
+  bool operator()(const std::string&) const { return true; }
+  bool operator()(const cv::Matx33d& m) const {
+    return std::all_of(m.val, m.val + 9, [](double v) { return std::isfinite(v); });
+  }
+};
 
 void checkResult(const Segmenter& segmenter, const Result& result, const cv::Mat& frame) {
   require(result.mask.type() == CV_8UC1 && result.mask.size() == frame.size(),
           "mask of the wrong type or size");
   require(cv::countNonZero((result.mask != 0) & (result.mask != 255)) == 0,
           "mask values other than 0 and 255");
-  const Diagnostics& d = result.diagnostics;
-  require(finite(d.model), "non-finite camera model");
-  require(std::isfinite(d.lambda) && d.lambda >= 0, "non-finite or negative lambda");
-  require(d.features >= 0 && d.tracks >= 0 && d.matches >= 0 && d.background_matches >= 0 &&
-              d.foreground_matches >= 0 && d.foreground_seeds >= 0 && d.background_seeds >= 0 &&
-              d.unknown_seeds >= 0 && d.cut_nodes >= 0,
-          "negative count in the diagnostics");
-  require(std::isfinite(d.timings.total_ms) && d.timings.total_ms >= 0, "bad timing");
+  for (const FieldInfo& field : diagnosticFields()) {
+    require(std::visit(SaneDiagnostic{}, diagnosticValue(result.diagnostics, field.name)),
+            "diagnostic " + field.name + " is negative or not finite");
+  }
   for (const Feature& f : result.features) {
     require(f.position.x >= -1 && f.position.x <= frame.cols + 1 && f.position.y >= -1 &&
                 f.position.y <= frame.rows + 1,

@@ -19,5 +19,5 @@ while True:
     cv2.imwrite(f"{sys.argv[2]}/{index:05d}.png", result.mask)  # HxW uint8, 0 / 255
     moving = result.features[result.features[:, 2] == 1]  # rows of (x, y, label)
     print(f"frame {index}: {cv2.countNonZero(result.mask)} moving pixels, "
-          f"{len(moving)} moving features, {result.timings['total_ms']:.1f} ms")
+          f"{len(moving)} moving features, {result.diagnostics.total_ms:.1f} ms")
     index += 1

@@ -21,36 +21,11 @@ struct Feature {
   FeatureLabel label = FeatureLabel::kUnknown;
 };
 
-// Wall time of each stage of one process() call, in milliseconds.
-struct Timings {
-  double prepare_ms = 0;   // colour conversion, downscaling, pyramid, feature detection
-  double motion_ms = 0;    // §3.1 tracking and two-layer RANSAC
-  double classify_ms = 0;  // §3.2 compensated difference, eq. (3), GMM refinement
-  double cut_ms = 0;       // §3.3 geodesic distances and max-flow
-  double total_ms = 0;
-};
-
+// What happened while one frame was processed; the fields are listed in movseg/diagnostics.def.
 struct Diagnostics {
-  // Frame-to-frame camera model mapping previous-frame pixel coordinates to current-frame
-  // pixel coordinates (full resolution). Affine models have a last row of (0, 0, 1).
-  cv::Matx33d model = cv::Matx33d::eye();
-  bool model_is_affine = true;
-  int features = 0;            // feature points detected in the previous frame
-  int tracks = 0;              // of those, tracked by LK forward and backward
-  int matches = 0;             // of those, kept by the ZNCC and forward–backward filters (S_m)
-  int background_matches = 0;  // final S_b
-  int foreground_matches = 0;  // final S_f
-  int outer_iterations = 0;    // outer layers of Algorithm 1 run
-  int foreground_seeds = 0;    // F_f after GMM refinement
-  int background_seeds = 0;    // F_b after GMM refinement
-  int unknown_seeds = 0;       // removed by the GMMs
-  double lambda = 0;           // the threshold of eq. (3) used for this pair
-  int cut_nodes = 0;           // pixels left to max-flow after fixing the decided ones
-  bool first_frame = false;    // no previous frame: empty mask
-  bool reset = false;          // frame size changed: the segmenter restarted on this frame
-  bool motion_fallback = false;  // too few matches: previous model (or identity) reused
-  bool no_background_seeds = false;  // F_b empty: the mask comes from eq. (3) alone
-  Timings timings;
+#define MOVSEG_DIAGNOSTIC(type, name, default_value, unit, doc) type name = default_value;
+#include "movseg/diagnostics.def"
+#undef MOVSEG_DIAGNOSTIC
 };
 
 struct Result {

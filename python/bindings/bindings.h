@@ -5,8 +5,8 @@
 
 namespace movseg::python {
 
-void bindParams(pybind11::module_& module);   // Params, MotionModel
-void bindResult(pybind11::module_& module);   // Result, Diagnostics
+void bindParams(pybind11::module_& module);     // Params
+void bindResult(pybind11::module_& module);     // Result, Diagnostics
 void bindSegmenter(pybind11::module_& module);  // Segmenter, createMovingCameraSubtractor
 
 }  // namespace movseg::python

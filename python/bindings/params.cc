@@ -1,9 +1,9 @@
-// movseg.Params: every field of movseg::Params, named and documented as in params.h (the field
-// list is generated from that header; see python/gen_params_fields.py).
-#include <set>
+// movseg.Params: every field of movseg/params.def as an attribute; enum fields take and give
+// their names ("homography").
 #include <string>
 
 #include "bindings.h"
+#include "fields.h"
 #include "movseg/params.h"
 
 namespace py = pybind11;
@@ -11,13 +11,25 @@ namespace py = pybind11;
 namespace movseg::python {
 namespace {
 
-const std::set<std::string>& fieldNames() {
-  static const std::set<std::string> names{
-#define MOVSEG_PARAM(field, name, doc) name,
-#include "params_fields.h"
-#undef MOVSEG_PARAM
-  };
-  return names;
+template <typename T>
+void bindField(py::class_<Params>& cls, const std::string& name, T Params::*member) {
+  const std::string doc = docOf(paramFields(), name);
+  const auto get = [member](const Params& p) { return toPython(p.*member); };
+  if constexpr (std::is_enum_v<T>) {
+    cls.def_property(pythonName(name).c_str(), get,
+                     [name](Params& p, const std::string& value) { setParam(&p, name, value); },
+                     doc.c_str());
+  } else {
+    cls.def_property(pythonName(name).c_str(), get,
+                     [member](Params& p, const T& value) { p.*member = value; }, doc.c_str());
+  }
+}
+
+bool isField(const std::string& python_name) {
+  for (const FieldInfo& field : paramFields()) {
+    if (pythonName(field.name) == python_name) return true;
+  }
+  return false;
 }
 
 // Keyword arguments go through the attributes' setters, which convert and type-check them.
@@ -25,7 +37,9 @@ Params fromKeywords(const py::kwargs& values) {
   py::object params = py::cast(Params());
   for (const auto& [key, value] : values) {
     const std::string name = py::str(key);
-    if (fieldNames().count(name) == 0) throw py::type_error("Params has no field '" + name + "'");
+    if (!isField(name)) {
+      throw py::type_error("Params has no field '" + name + "'");
+    }
     try {
       py::setattr(params, key, value);
     } catch (const py::error_already_set& e) {
@@ -36,33 +50,19 @@ Params fromKeywords(const py::kwargs& values) {
   return params.cast<Params>();
 }
 
-std::string describe(const py::object& params) {
-  std::string text = "movseg.Params(";
-  const char* separator = "";
-#define MOVSEG_PARAM(field, name, doc)                                                  \
-  text += separator + std::string(name) + "=" + py::repr(params.attr(name)).cast<std::string>(); \
-  separator = ", ";
-#include "params_fields.h"
-#undef MOVSEG_PARAM
-  return text + ")";
-}
-
 }  // namespace
 
 void bindParams(py::module_& module) {
-  py::enum_<MotionModel>(module, "MotionModel", "The frame-to-frame camera model of §3.1.")
-      .value("affine", MotionModel::kAffine)
-      .value("homography", MotionModel::kHomography);
-
   py::class_<Params> params(module, "Params",
-                            "Every parameter of the method; Params(lambda_=500, "
-                            "static_camera=True) sets fields by name (lambda is lambda_ in "
-                            "Python).");
+                            "Every parameter of the method (movseg/params.def); "
+                            "Params(lambda_=500, static_camera=True) sets fields by name "
+                            "(lambda is lambda_ in Python).");
   params.def(py::init(&fromKeywords))
       .def("check", &Params::check, "Raises ValueError naming the first parameter out of range.")
-      .def("__repr__", &describe);
-#define MOVSEG_PARAM(field, name, doc) params.def_readwrite(name, &Params::field, doc);
-#include "params_fields.h"
+      .def("__repr__", [](const py::object& p) { return reprOf(p, "Params", paramFields()); });
+#define MOVSEG_PARAM(type, name, default_value, min, max, step, unit, doc) \
+  bindField<type>(params, #name, &Params::name);
+#include "movseg/params.def"
 #undef MOVSEG_PARAM
 }
 

@@ -9,7 +9,6 @@
 from ._movseg import (
     BackgroundSubtractor,
     Diagnostics,
-    MotionModel,
     Params,
     Result,
     Segmenter,
@@ -20,7 +19,6 @@ from ._movseg import (
 __all__ = [
     "BackgroundSubtractor",
     "Diagnostics",
-    "MotionModel",
     "Params",
     "Result",
     "Segmenter",

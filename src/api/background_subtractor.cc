@@ -13,9 +13,22 @@ class MovingCameraSubtractor : public cv::BackgroundSubtractor {
     segmenter_.process(image.getMat()).mask.copyTo(fgmask);
   }
 
+  // The overload newer OpenCV releases declare pure virtual (a known foreground mask to learn
+  // from). No `override`: OpenCV 4.6 does not declare it. There is no model to teach, so the
+  // known mask is ignored.
+  void apply(cv::InputArray image, cv::InputArray /*knownForegroundMask*/, cv::OutputArray fgmask,
+             double learningRate) {
+    apply(image, fgmask, learningRate);
+  }
+
   void getBackgroundImage(cv::OutputArray backgroundImage) const override {
     segmenter_.compensatedPreviousFrame().copyTo(backgroundImage);
   }
+
+  // cv::Algorithm::clear(): forget the stream, so the next frame is a first frame.
+  void clear() override { segmenter_.reset(); }
+
+  cv::String getDefaultName() const override { return "movseg.MovingCameraSubtractor"; }
 
  private:
   Segmenter segmenter_;

@@ -59,4 +59,21 @@ void refineByColour(const std::vector<cv::Vec3f>& colours, int clusters,
   }
 }
 
+FeatureClasses classifyFeatures(const cv::Mat& difference, const cv::Mat& bgr,
+                                const std::vector<cv::Point2f>& points,
+                                const std::vector<cv::Point2f>& static_points,
+                                const Params& params) {
+  FeatureClasses classes;
+  classes.lambda = chooseLambda(difference, static_points, params);
+  classes.by_difference = classifyByDifference(difference, points, classes.lambda);
+  classes.labels = classes.by_difference;
+  if (params.gmm_refine) {
+    std::vector<cv::Vec3f> colours;
+    colours.reserve(points.size());
+    for (const cv::Point2f& p : points) colours.emplace_back(bgr.at<cv::Vec3b>(p));
+    refineByColour(colours, params.gmm_clusters, &classes.labels);
+  }
+  return classes;
+}
+
 }  // namespace movseg

@@ -27,4 +27,18 @@ std::vector<FeatureLabel> classifyByDifference(const cv::Mat& difference,
 void refineByColour(const std::vector<cv::Vec3f>& colours, int clusters,
                     std::vector<FeatureLabel>* labels);
 
+// §3.2 for one frame's features.
+struct FeatureClasses {
+  double lambda = 0;                        // the threshold of eq. (3) for this pair
+  std::vector<FeatureLabel> by_difference;  // eq. (3)
+  std::vector<FeatureLabel> labels;         // then eq. (5), when params.gmm_refine
+};
+
+// Classifies `points` of `bgr` (8-bit BGR) by the compensated difference `difference` (eq. 4,
+// same size), with lambda chosen from d at `static_points`, and refines the labels by colour.
+FeatureClasses classifyFeatures(const cv::Mat& difference, const cv::Mat& bgr,
+                                const std::vector<cv::Point2f>& points,
+                                const std::vector<cv::Point2f>& static_points,
+                                const Params& params);
+
 }  // namespace movseg

@@ -6,9 +6,6 @@
 #include <string>
 
 #include <opencv2/imgproc.hpp>
-#include <opencv2/video/tracking.hpp>
-
-#include "motion/features.h"
 
 namespace movseg {
 
@@ -56,15 +53,6 @@ cv::Size scaledSize(cv::Size size, int width) {
   return {width, std::max(1, static_cast<int>(std::lround(size.height * scale)))};
 }
 
-namespace {
-
-// LK needs a window's worth of pixels at the base level; smaller frames are not tracked.
-bool trackable(const cv::Mat& grey, const Params& params) {
-  return std::min(grey.cols, grey.rows) >= params.lk_window + 1;
-}
-
-}  // namespace
-
 PreparedFrame prepareFrame(const cv::Mat& bgr, const Params& params) {
   PreparedFrame f;
   f.bgr = bgr;
@@ -80,12 +68,6 @@ PreparedFrame prepareFrame(const cv::Mat& bgr, const Params& params) {
   const cv::Mat& align_source = align_size == seg_size ? f.seg_bgr : bgr;
   cv::cvtColor(resizedTo(align_source, align_size), f.small_grey, cv::COLOR_BGR2GRAY);
   f.align_scale = static_cast<double>(align_size.width) / bgr.cols;
-  // Features serve §3.2 in every mode; the pyramid only serves alignment.
-  if (!params.static_camera && trackable(f.small_grey, params)) {
-    const cv::Size window(params.lk_window, params.lk_window);
-    cv::buildOpticalFlowPyramid(f.small_grey, f.pyramid, window, params.lk_levels, true);
-  }
-  f.features = detectFeatures(f.small_grey, params);
   return f;
 }
 

@@ -1,4 +1,4 @@
-// Input normalisation and the per-frame data that the stages share.
+// The bottom layer: input normalisation, working scales, and the prepared frame every stage reads.
 #pragma once
 
 #include <vector>
@@ -20,16 +20,15 @@ cv::Mat resizedTo(const cv::Mat& image, cv::Size size);
 // The size of `size` scaled to `width` (0 = unchanged), never upscaled, at least 1x1.
 cv::Size scaledSize(cv::Size size, int width);
 
-// Everything computed once per frame and reused by the pair (prev, cur) and the next pair.
+// A frame at the working scales of Params, computed once and used by the pair (prev, cur) and
+// the next pair.
 struct PreparedFrame {
-  cv::Mat bgr;                        // full resolution
-  cv::Mat seg_bgr;                    // segmentation scale (may share data with bgr)
-  cv::Mat seg_smooth;                 // seg_bgr blurred by Params::difference_blur, for eq. (4)
-  cv::Mat small_grey;                 // alignment scale
-  std::vector<cv::Mat> pyramid;       // LK pyramid of small_grey (empty if too small to track)
-  std::vector<cv::Point2f> features;  // edge and corner points of small_grey
-  double align_scale = 1.0;           // small_grey = bgr scaled by this
-  double seg_scale = 1.0;             // seg_bgr = bgr scaled by this
+  cv::Mat bgr;                 // full resolution
+  cv::Mat seg_bgr;             // segmentation scale (may share data with bgr)
+  cv::Mat seg_smooth;          // seg_bgr blurred by Params::difference_blur, for eq. (4)
+  cv::Mat small_grey;          // alignment scale
+  double align_scale = 1.0;    // small_grey = bgr scaled by this
+  double seg_scale = 1.0;      // seg_bgr = bgr scaled by this
 };
 
 PreparedFrame prepareFrame(const cv::Mat& bgr, const Params& params);

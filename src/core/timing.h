@@ -1,4 +1,4 @@
-// Wall-clock timing of the stages, for Diagnostics::timings.
+// Wall-clock timing of the stages, for the *_ms fields of Diagnostics.
 #pragma once
 
 #include <chrono>

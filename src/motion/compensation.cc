@@ -15,9 +15,9 @@ namespace {
 constexpr int kMinMatches = 8;
 
 template <typename Estimator>
-RansacReport fitModel(const std::vector<Track>& matches, const std::vector<char>& use,
-                      cv::Size image_size, const cv::Matx33d* initial, const Params& params,
-                      cv::RNG& rng) {
+RansacReport<cv::Matx33d> fitModel(const std::vector<Track>& matches, const std::vector<char>& use,
+                                   cv::Size image_size, const cv::Matx33d* initial,
+                                   const Params& params, cv::RNG& rng) {
   std::vector<cv::Point2f> x, y;
   for (size_t i = 0; i < matches.size(); ++i) {
     if (!use[i]) continue;
@@ -27,13 +27,14 @@ RansacReport fitModel(const std::vector<Track>& matches, const std::vector<char>
   RansacOptions options;
   options.max_trials = params.ransac_iterations;
   options.max_error = params.ransac_threshold;
-  options.grid = params.ransac_grid;
+  options.sample_grid = params.ransac_grid;
   return Ransac<Estimator>(options).estimate(x, y, image_size, rng, initial);
 }
 
-RansacReport fitCameraModel(const std::vector<Track>& matches, const std::vector<char>& use,
-                            cv::Size image_size, const cv::Matx33d* initial, const Params& params,
-                            cv::RNG& rng) {
+RansacReport<cv::Matx33d> fitCameraModel(const std::vector<Track>& matches,
+                                         const std::vector<char>& use, cv::Size image_size,
+                                         const cv::Matx33d* initial, const Params& params,
+                                         cv::RNG& rng) {
   if (params.motion_model == MotionModel::kHomography) {
     return fitModel<HomographyEstimator>(matches, use, image_size, initial, params, rng);
   }
@@ -51,12 +52,12 @@ std::vector<cv::Point2f> evenSubsample(const std::vector<cv::Point2f>& points, i
 }
 
 // Eq. (3) on the matches: S_b = {d <= lambda}.
-std::vector<char> splitBackground(const PreparedFrame& prev, const PreparedFrame& cur,
+std::vector<char> splitBackground(const AlignmentFrame& prev, const AlignmentFrame& cur,
                                   const std::vector<Track>& matches, const cv::Matx33d& model,
                                   double lambda) {
   std::vector<cv::Point2f> points;
   for (const Track& t : matches) points.push_back(t.cur);
-  const std::vector<float> d = compensatedDifferenceAt(prev.small_grey, cur.small_grey, model,
+  const std::vector<float> d = compensatedDifferenceAt(prev.grey, cur.grey, model,
                                                        points);
   std::vector<char> background(matches.size());
   for (size_t i = 0; i < d.size(); ++i) background[i] = d[i] <= lambda;
@@ -65,7 +66,7 @@ std::vector<char> splitBackground(const PreparedFrame& prev, const PreparedFrame
 
 }  // namespace
 
-MotionEstimate estimateCameraMotion(const PreparedFrame& prev, const PreparedFrame& cur,
+MotionEstimate estimateCameraMotion(const AlignmentFrame& prev, const AlignmentFrame& cur,
                                     const cv::Matx33d& warm, const Params& params,
                                     std::uint64_t seed) {
   MotionEstimate result;
@@ -84,12 +85,12 @@ MotionEstimate estimateCameraMotion(const PreparedFrame& prev, const PreparedFra
   }
 
   cv::RNG rng(seed);
-  const cv::Size size = cur.small_grey.size();
+  const cv::Size size = cur.grey.size();
   const cv::Matx33d* initial = params.warm_start ? &warm : nullptr;
   bool fitted = false;
   while (result.outer_iterations < params.max_outer_iterations) {
     ++result.outer_iterations;
-    const RansacReport report =
+    const RansacReport<cv::Matx33d> report =
         fitCameraModel(result.matches, result.background, size, initial, params, rng);  // step 1
     if (!report.success) break;
     result.model = report.model;

@@ -7,7 +7,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "core/frame.h"
+#include "motion/features.h"
 #include "motion/tracking.h"
 #include "movseg/params.h"
 
@@ -26,7 +26,7 @@ struct MotionEstimate {
 // Algorithm 1. `warm` is the previous pair's model (alignment scale): it predicts the LK
 // positions and is RANSAC's first hypothesis when params.warm_start is set, and it is the
 // fallback when the pair cannot be aligned (textureless frame, scene cut).
-MotionEstimate estimateCameraMotion(const PreparedFrame& prev, const PreparedFrame& cur,
+MotionEstimate estimateCameraMotion(const AlignmentFrame& prev, const AlignmentFrame& cur,
                                     const cv::Matx33d& warm, const Params& params,
                                     std::uint64_t seed);
 

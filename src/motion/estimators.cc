@@ -8,6 +8,18 @@
 #include "motion/model.h"
 
 namespace movseg {
+namespace {
+
+void squaredTransferErrors(const std::vector<cv::Point2f>& x, const std::vector<cv::Point2f>& y,
+                           const cv::Matx33d& model, std::vector<double>* residuals) {
+  residuals->resize(x.size());
+  for (size_t i = 0; i < x.size(); ++i) {
+    const cv::Point2f d = applyModel(model, x[i]) - y[i];
+    (*residuals)[i] = static_cast<double>(d.x) * d.x + static_cast<double>(d.y) * d.y;
+  }
+}
+
+}  // namespace
 
 // Least squares (exact for 3 points) through the normal equations of [x y 1] * row = target,
 // in coordinates centred on the points' mean so the system stays well conditioned.
@@ -50,13 +62,16 @@ bool HomographyEstimator::estimate(const std::vector<cv::Point2f>& x,
   return cv::determinant(*model) > 1e-6;
 }
 
-void squaredResiduals(const std::vector<cv::Point2f>& x, const std::vector<cv::Point2f>& y,
-                      const cv::Matx33d& model, std::vector<double>* residuals) {
-  residuals->resize(x.size());
-  for (size_t i = 0; i < x.size(); ++i) {
-    const cv::Point2f d = applyModel(model, x[i]) - y[i];
-    (*residuals)[i] = static_cast<double>(d.x) * d.x + static_cast<double>(d.y) * d.y;
-  }
+void AffineEstimator::residuals(const std::vector<cv::Point2f>& x,
+                                const std::vector<cv::Point2f>& y, const Model& model,
+                                std::vector<double>* residuals) {
+  squaredTransferErrors(x, y, model, residuals);
+}
+
+void HomographyEstimator::residuals(const std::vector<cv::Point2f>& x,
+                                    const std::vector<cv::Point2f>& y, const Model& model,
+                                    std::vector<double>* residuals) {
+  squaredTransferErrors(x, y, model, residuals);
 }
 
 }  // namespace movseg

@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include <opencv2/imgproc.hpp>
+#include <opencv2/video/tracking.hpp>
 
 namespace movseg {
 namespace {
@@ -52,6 +53,19 @@ std::vector<cv::Point2f> detectFeatures(const cv::Mat& grey, const Params& param
   cv::goodFeaturesToTrack(grey, points, params.max_corners, 0.01, min_distance, mask);
   addEdgePoints(grey, params.edge_cell, margin, &points);
   return points;
+}
+
+AlignmentFrame prepareAlignment(const cv::Mat& grey, const Params& params) {
+  AlignmentFrame frame;
+  frame.grey = grey;
+  frame.features = detectFeatures(grey, params);
+  // LK needs a window's worth of pixels at the base level; smaller frames are not tracked.
+  const bool trackable = std::min(grey.cols, grey.rows) >= params.lk_window + 1;
+  if (!params.static_camera && trackable) {
+    const cv::Size window(params.lk_window, params.lk_window);
+    cv::buildOpticalFlowPyramid(grey, frame.pyramid, window, params.lk_levels, true);
+  }
+  return frame;
 }
 
 }  // namespace movseg

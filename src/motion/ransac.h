@@ -1,10 +1,22 @@
-// One RANSAC loop for every model (COLMAP's split): the Estimator fits and scores models, the
-// sampler (SpreadSampler) chooses the minimal samples, the support measure ranks hypotheses,
-// and this loop keeps the best one and refits it by least squares on its inliers.
+// One RANSAC loop for every model, split as COLMAP splits it (src/colmap/optim/ransac.h): an
+// Estimator fits models and measures residuals, a Sampler draws the minimal samples, a
+// SupportMeasurer scores hypotheses; the loop keeps the best and refits it by least squares.
+// A new model (a parallax model, say) is one more Estimator class:
+//
+//   struct Estimator {
+//     using Model = ...;
+//     static constexpr int kMinNumSamples = ...;
+//     // Fits a model to the correspondences (exactly for a minimal sample, by least squares
+//     // for more); false for a degenerate set.
+//     static bool estimate(const std::vector<cv::Point2f>& x, const std::vector<cv::Point2f>& y,
+//                          Model* model);
+//     // Squared residual of every correspondence, in squared pixels.
+//     static void residuals(const std::vector<cv::Point2f>& x, const std::vector<cv::Point2f>& y,
+//                           const Model& model, std::vector<double>* residuals);
+//   };
 #pragma once
 
 #include <algorithm>
-#include <bitset>
 #include <cmath>
 #include <vector>
 
@@ -12,138 +24,132 @@
 
 #include "motion/estimators.h"
 #include "motion/spread_sampler.h"
+#include "motion/support.h"
 
 namespace movseg {
 
 struct RansacOptions {
-  int max_trials = 64;       // hypotheses at most (fewer when the inlier ratio allows)
-  double max_error = 1.0;    // inlier transfer error, pixels
-  double confidence = 0.99;  // for the adaptive number of trials
-  int grid = 3;              // SpreadSampler grid side
+  int max_trials = 64;       // hypotheses at most (fewer once the inlier ratio allows)
+  double max_error = 1.0;    // largest residual of an inlier, pixels
+  double confidence = 0.99;  // of having drawn one all-inlier sample, for the adaptive trials
+  int sample_grid = 3;       // the Sampler's grid side (SpreadSampler)
+
+  // Throws std::invalid_argument naming the first option out of range.
+  void check() const;
 };
 
-// Support of a hypothesis: first how much of the image its inliers cover (occupied cells of a
-// kCoverageGrid x kCoverageGrid grid), then how many there are. The background spans the image
-// while a moving object is local, so coverage keeps a densely textured object from winning on
-// numbers alone (docs/design.md).
-struct SpreadSupport {
-  static constexpr int kCoverageGrid = 8;
-  int cells = 0;
-  int inliers = 0;
-  bool operator>(const SpreadSupport& o) const {
-    return cells != o.cells ? cells > o.cells : inliers > o.inliers;
-  }
-};
-
+template <typename Model>
 struct RansacReport {
-  bool success = false;
-  int trials = 0;
-  int support = 0;                 // inliers of the final model
-  std::vector<char> inlier_mask;   // per correspondence
-  cv::Matx33d model = cv::Matx33d::eye();
+  bool success = false;  // a model was fitted to at least kMinNumSamples inliers
+  int trials = 0;        // minimal samples drawn
+  Model model{};         // the refitted model, when success
+  int num_inliers = 0;   // of `model`
+  std::vector<char> inlier_mask;  // of `model`, per correspondence
 };
 
-template <typename Estimator>
+template <typename Estimator, typename Sampler = SpreadSampler,
+          typename SupportMeasurer = CoverageSupportMeasurer>
 class Ransac {
  public:
-  explicit Ransac(const RansacOptions& options) : options_(options) {}
+  using Model = typename Estimator::Model;
+  using Report = RansacReport<Model>;
+  static constexpr int kMinNumSamples = Estimator::kMinNumSamples;
 
-  // `initial`, when given, is scored before any sample is drawn (the warm start).
-  RansacReport estimate(const std::vector<cv::Point2f>& x, const std::vector<cv::Point2f>& y,
-                        cv::Size image_size, cv::RNG& rng,
-                        const cv::Matx33d* initial = nullptr) const {
-    RansacReport report;
+  explicit Ransac(const RansacOptions& options) : options_(options) { options_.check(); }
+
+  // x[i] (previous frame) corresponds to y[i] (current frame); both lie in an image of
+  // `image_size`. `initial`, when given, is scored before any sample is drawn (a warm start).
+  Report estimate(const std::vector<cv::Point2f>& x, const std::vector<cv::Point2f>& y,
+                  cv::Size image_size, cv::RNG& rng, const Model* initial = nullptr) const {
+    Report report;
     const int n = static_cast<int>(x.size());
-    if (n < Estimator::kMinNumSamples) return report;
+    if (n < kMinNumSamples) return report;
 
-    coverageCells(x, image_size);
-    SpreadSupport best;
-    if (initial != nullptr) consider(x, y, *initial, &best, &report);
-    const SpreadSampler sampler(x, image_size, options_.grid);
+    const SupportMeasurer measurer(x, image_size);
+    Best best;
+    if (initial != nullptr) consider(x, y, *initial, measurer, &best);
+    const Sampler sampler(x, image_size, options_.sample_grid);
     std::vector<int> sample;
-    std::vector<cv::Point2f> sx(Estimator::kMinNumSamples), sy(Estimator::kMinNumSamples);
+    std::vector<cv::Point2f> sx(kMinNumSamples), sy(kMinNumSamples);
     int needed = options_.max_trials;
     for (report.trials = 0; report.trials < needed; ++report.trials) {
-      sampler.sample(Estimator::kMinNumSamples, rng, &sample);
-      for (int k = 0; k < Estimator::kMinNumSamples; ++k) {
+      sampler.sample(kMinNumSamples, rng, &sample);
+      for (int k = 0; k < kMinNumSamples; ++k) {
         sx[k] = x[static_cast<size_t>(sample[k])];
         sy[k] = y[static_cast<size_t>(sample[k])];
       }
-      cv::Matx33d model;
+      Model model;
       if (!Estimator::estimate(sx, sy, &model)) continue;
-      if (consider(x, y, model, &best, &report)) needed = trialsFor(best.inliers, n);
+      if (consider(x, y, model, measurer, &best)) needed = trialsFor(best.support.num_inliers, n);
     }
-    if (report.support < Estimator::kMinNumSamples) return report;
-    refit(x, y, &report);
-    report.success = report.support >= Estimator::kMinNumSamples;
+    if (best.support.num_inliers < kMinNumSamples) return report;
+    report.model = best.model;
+    report.success = refit(x, y, &report.model);
+    report.num_inliers = inliers(x, y, report.model, &report.inlier_mask);
     return report;
   }
 
  private:
-  void coverageCells(const std::vector<cv::Point2f>& x, cv::Size image_size) const {
-    constexpr int g = SpreadSupport::kCoverageGrid;
-    cells_.resize(x.size());
-    for (size_t i = 0; i < x.size(); ++i) {
-      const int cx = std::clamp(static_cast<int>(x[i].x * g / image_size.width), 0, g - 1);
-      const int cy = std::clamp(static_cast<int>(x[i].y * g / image_size.height), 0, g - 1);
-      cells_[i] = cy * g + cx;
-    }
-  }
+  struct Best {
+    typename SupportMeasurer::Support support;
+    Model model{};
+  };
+
+  double maxSquaredError() const { return options_.max_error * options_.max_error; }
 
   // Keeps `model` when its support beats the best so far.
   bool consider(const std::vector<cv::Point2f>& x, const std::vector<cv::Point2f>& y,
-                const cv::Matx33d& model, SpreadSupport* best, RansacReport* report) const {
-    squaredResiduals(x, y, model, &residuals_);
-    const double limit = options_.max_error * options_.max_error;
-    std::bitset<SpreadSupport::kCoverageGrid * SpreadSupport::kCoverageGrid> covered;
-    SpreadSupport support;
-    for (size_t i = 0; i < residuals_.size(); ++i) {
-      if (residuals_[i] > limit) continue;
-      ++support.inliers;
-      covered.set(static_cast<size_t>(cells_[i]));
-    }
-    support.cells = static_cast<int>(covered.count());
-    if (!(support > *best)) return false;
-    *best = support;
-    report->support = support.inliers;
-    report->model = model;
+                const Model& model, const SupportMeasurer& measurer, Best* best) const {
+    Estimator::residuals(x, y, model, &residuals_);
+    const auto support = measurer.evaluate(residuals_, maxSquaredError());
+    if (!SupportMeasurer::better(support, best->support)) return false;
+    *best = {support, model};
     return true;
   }
 
+  // The inlier mask of `model` and the number of inliers.
+  int inliers(const std::vector<cv::Point2f>& x, const std::vector<cv::Point2f>& y,
+              const Model& model, std::vector<char>* mask) const {
+    Estimator::residuals(x, y, model, &residuals_);
+    mask->resize(x.size());
+    int count = 0;
+    for (size_t i = 0; i < x.size(); ++i) count += (*mask)[i] = residuals_[i] <= maxSquaredError();
+    return count;
+  }
+
   // Least squares on the inliers, twice: the refit model may gain inliers the sample missed.
-  void refit(const std::vector<cv::Point2f>& x, const std::vector<cv::Point2f>& y,
-             RansacReport* report) const {
-    const double limit = options_.max_error * options_.max_error;
+  // False when a round finds too few inliers to fit; a degenerate refit keeps the model.
+  bool refit(const std::vector<cv::Point2f>& x, const std::vector<cv::Point2f>& y,
+             Model* model) const {
+    std::vector<char> mask;
+    std::vector<cv::Point2f> ix, iy;
     for (int round = 0; round < 2; ++round) {
-      squaredResiduals(x, y, report->model, &residuals_);
-      std::vector<cv::Point2f> ix, iy;
-      report->inlier_mask.assign(x.size(), 0);
+      if (inliers(x, y, *model, &mask) < kMinNumSamples) return false;
+      ix.clear();
+      iy.clear();
       for (size_t i = 0; i < x.size(); ++i) {
-        if (residuals_[i] > limit) continue;
-        report->inlier_mask[i] = 1;
+        if (!mask[i]) continue;
         ix.push_back(x[i]);
         iy.push_back(y[i]);
       }
-      report->support = static_cast<int>(ix.size());
-      cv::Matx33d model;
-      if (report->support < Estimator::kMinNumSamples || !Estimator::estimate(ix, iy, &model)) {
-        return;
-      }
-      report->model = model;
+      Model fitted;
+      if (!Estimator::estimate(ix, iy, &fitted)) return true;
+      *model = fitted;
     }
+    return true;
   }
 
-  int trialsFor(int support, int n) const {
-    const double inlier_ratio = static_cast<double>(support) / n;
-    const double all_inliers = std::pow(inlier_ratio, Estimator::kMinNumSamples);
+  // Trials after which an all-inlier sample has been drawn with options_.confidence.
+  int trialsFor(int num_inliers, int n) const {
+    const double inlier_ratio = static_cast<double>(num_inliers) / n;
+    const double all_inliers = std::pow(inlier_ratio, kMinNumSamples);
     if (all_inliers >= 1.0) return 1;
     const double trials = std::log(1 - options_.confidence) / std::log(1 - all_inliers);
     return static_cast<int>(std::min<double>(options_.max_trials, std::ceil(trials)));
   }
 
   RansacOptions options_;
-  mutable std::vector<double> residuals_;
-  mutable std::vector<int> cells_;
+  mutable std::vector<double> residuals_;  // scratch, reused across hypotheses
 };
 
 }  // namespace movseg

@@ -8,9 +8,10 @@
 
 namespace movseg {
 
-// Buckets the points into a grid x grid partition of their image and draws each minimal
-// sample from distinct, randomly chosen cells. Falls back to distinct uniform indices when too
-// few cells are occupied. Deterministic for a given cv::RNG state.
+// RANSAC's Sampler (motion/ransac.h): buckets the points into a grid x grid partition of their
+// image and draws each minimal sample from distinct, randomly chosen cells. Falls back to
+// distinct uniform indices when too few cells are occupied. Deterministic for a given cv::RNG
+// state.
 class SpreadSampler {
  public:
   SpreadSampler(const std::vector<cv::Point2f>& points, cv::Size image_size, int grid);

@@ -8,6 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "movseg/fields.h"
 #include "test_support.h"
 
 namespace movseg {
@@ -51,10 +52,12 @@ TEST(SegmentCli, WritesOneMaskPerFrameAndStatsLines) {
   while (std::getline(stats, line)) {
     const nlohmann::json j = nlohmann::json::parse(line);
     EXPECT_EQ(j.at("frame").get<int>(), lines);
-    EXPECT_EQ(j.at("model").size(), 2u);  // affine: 2 rows of 3
+    EXPECT_EQ(j.at("model").size(), 3u);  // 3 rows of 3
     EXPECT_EQ(j.at("model")[0].size(), 3u);
-    EXPECT_TRUE(j.at("ms").contains("total"));
-    EXPECT_EQ(j.at("flags").at("first_frame").get<bool>(), lines == 0);
+    for (const FieldInfo& field : diagnosticFields()) EXPECT_TRUE(j.contains(field.name)) << field.name;
+    EXPECT_EQ(j.size(), diagnosticFields().size() + 1);  // and "frame"
+    EXPECT_GT(j.at("total_ms").get<double>(), 0.0);
+    EXPECT_EQ(j.at("first_frame").get<bool>(), lines == 0);
     ++lines;
   }
   EXPECT_EQ(lines, 6);

@@ -14,10 +14,14 @@ using test::makePair;
 using test::PairSpec;
 using test::similarityAboutCentre;
 
+// The frame as §3.1 sees it, at the alignment scale.
+AlignmentFrame aligned(const cv::Mat& bgr, const Params& params) {
+  return prepareAlignment(prepareFrame(bgr, params).small_grey, params);
+}
+
 MotionEstimate estimate(const test::FramePair& pair, const Params& params) {
-  const PreparedFrame prev = prepareFrame(pair.prev, params);
-  const PreparedFrame cur = prepareFrame(pair.cur, params);
-  return estimateCameraMotion(prev, cur, cv::Matx33d::eye(), params, 42);
+  return estimateCameraMotion(aligned(pair.prev, params), aligned(pair.cur, params),
+                              cv::Matx33d::eye(), params, 42);
 }
 
 struct KnownAffine {
@@ -75,10 +79,9 @@ TEST(Motion, ModelIsScaledBackFromTheAlignmentScale) {
   spec.object_fraction = 0.2;
   Params params;  // alignment at width 320: half scale
   const test::FramePair pair = makePair(spec);
-  const PreparedFrame prev = prepareFrame(pair.prev, params);
-  const PreparedFrame cur = prepareFrame(pair.cur, params);
-  ASSERT_DOUBLE_EQ(cur.align_scale, 0.5);
-  const MotionEstimate motion = estimateCameraMotion(prev, cur, cv::Matx33d::eye(), params, 1);
+  ASSERT_DOUBLE_EQ(prepareFrame(pair.cur, params).align_scale, 0.5);
+  const MotionEstimate motion = estimateCameraMotion(
+      aligned(pair.prev, params), aligned(pair.cur, params), cv::Matx33d::eye(), params, 1);
   const cv::Matx33d full = cv::Matx33d(2, 0, 0, 0, 2, 0, 0, 0, 1) * motion.model *
                            cv::Matx33d(0.5, 0, 0, 0, 0.5, 0, 0, 0, 1);
   EXPECT_LT(cornerError(full, spec.camera, spec.size), 1.0);  // 0.5 px at the alignment scale
@@ -124,7 +127,7 @@ TEST(Motion, TexturelessPairFallsBackToWarmModel) {
   const Params params;
   const cv::Matx33d warm(1, 0, 2, 0, 1, 1, 0, 0, 1);
   const MotionEstimate motion =
-      estimateCameraMotion(prepareFrame(flat, params), prepareFrame(flat, params), warm, params, 0);
+      estimateCameraMotion(aligned(flat, params), aligned(flat, params), warm, params, 0);
   EXPECT_TRUE(motion.fallback);
   EXPECT_EQ(motion.model, warm);
 }

@@ -174,7 +174,7 @@ TEST(DegenerateScenes, OneFrameVideoThroughTheCliGivesOneEmptyMask) {
   std::string line, extra;
   ASSERT_TRUE(std::getline(stats, line));
   EXPECT_FALSE(std::getline(stats, extra));
-  EXPECT_TRUE(nlohmann::json::parse(line).at("flags").at("first_frame").get<bool>());
+  EXPECT_TRUE(nlohmann::json::parse(line).at("first_frame").get<bool>());
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "movseg/fields.h"
 #include "synth/synth.h"
 
 namespace movseg::test {
@@ -16,10 +17,12 @@ void expectValidResult(const Result& result, cv::Size size) {
   EXPECT_EQ(cv::countNonZero((result.mask != 0) & (result.mask != 255)), 0);
   const Diagnostics& d = result.diagnostics;
   for (double v : d.model.val) EXPECT_TRUE(std::isfinite(v)) << "model " << d.model;
-  EXPECT_TRUE(std::isfinite(d.lambda));
-  for (double ms : {d.timings.prepare_ms, d.timings.motion_ms, d.timings.classify_ms,
-                    d.timings.cut_ms, d.timings.total_ms}) {
-    EXPECT_TRUE(std::isfinite(ms));
+  for (const FieldInfo& field : diagnosticFields()) {
+    const FieldValue value = diagnosticValue(d, field.name);
+    if (const auto* real = std::get_if<double>(&value)) {
+      EXPECT_TRUE(std::isfinite(*real) && *real >= 0) << field.name << " = " << *real;
+    }
+    if (const auto* count = std::get_if<int>(&value)) EXPECT_GE(*count, 0) << field.name;
   }
   for (const Feature& f : result.features) {
     EXPECT_TRUE(std::isfinite(f.position.x) && std::isfinite(f.position.y));

@@ -1,10 +1,13 @@
+// `mog2` and `mog2-comp`: OpenCV's MOG2 background subtractor, on the raw frames and in a frame
+// stabilised by §3.1's camera model. Baselines: what a practitioner tries first.
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/background_segm.hpp>
 
-#include "core/camera_tracker.h"
-#include "methods/baselines.h"
-#include "methods/method_support.h"
+#include "core/frame.h"
+#include "motion/camera_tracker.h"
 #include "motion/model.h"
+#include "pipelines/motion_report.h"
+#include "pipelines/pipeline.h"
 
 namespace movseg {
 namespace {
@@ -15,50 +18,45 @@ cv::Ptr<cv::BackgroundSubtractorMOG2> newMog2() {
   return cv::createBackgroundSubtractorMOG2(500, 16.0, false);
 }
 
-// Both MOG2 methods run at the segmentation scale, like the paper's cut, so the comparison is
-// of methods rather than of resolutions.
-class Mog2Method : public Method {
+// Both MOG2 pipelines run at the segmentation scale, like the paper's cut, so the comparison is
+// of methods rather than of resolutions. MOG2 cannot mix frame sizes; the Segmenter resets the
+// pipeline when the size changes.
+class Mog2Pipeline : public Pipeline {
  public:
-  explicit Mog2Method(const Params& params) : params_(params), mog2_(newMog2()) {}
+  explicit Mog2Pipeline(const Params& params) : params_(params) {}
 
-  Result process(const cv::Mat& frame) override {
-    const Clock::time_point start = Clock::now();
-    const cv::Mat bgr = toBgr8(frame);
-    Result result;
-    if (bgr.size() != size_) {  // a new stream: MOG2 cannot mix sizes
-      mog2_ = newMog2();
-      result.diagnostics.reset = !size_.empty();
-      size_ = bgr.size();
-    }
+  cv::Mat process(const cv::Mat& bgr, const DebugSink&, Result*) override {
     cv::Mat mask;
     mog2_->apply(resizedTo(bgr, scaledSize(bgr.size(), params_.segmentation_width)), mask);
-    result.mask = upscaledMask(mask, bgr.size());
-    result.diagnostics.timings.total_ms = millisecondsSince(start);
-    return result;
+    return mask;
   }
+
+  void reset() override { mog2_ = newMog2(); }
+
+  cv::Mat compensatedPreviousFrame() const override { return cv::Mat(); }
 
  private:
   Params params_;
-  cv::Ptr<cv::BackgroundSubtractorMOG2> mog2_;
-  cv::Size size_;
+  cv::Ptr<cv::BackgroundSubtractorMOG2> mog2_ = newMog2();
 };
 
 // MOG2 in a stabilised reference frame. to_reference_ maps current segmentation-scale pixels
-// to the reference's; when less than half of the current view still falls on the reference
-// (the camera has panned away), the reference restarts at the current frame.
-class CompensatedMog2Method : public TrackedMethod {
+// to the reference's; when the current view covers less than half of the reference (the camera
+// has panned away), the reference restarts at the current frame.
+class CompensatedMog2Pipeline : public Pipeline {
  public:
-  using TrackedMethod::TrackedMethod;
+  explicit CompensatedMog2Pipeline(const Params& params) : tracker_(params) {}
 
- protected:
-  cv::Mat maskFor(const CameraTracker::Step& step, Diagnostics* diag) override {
-    const PreparedFrame& cur = *step.current;
+  cv::Mat process(const cv::Mat& bgr, const DebugSink&, Result* result) override {
+    const CameraTracker::Step step = tracker_.advance(bgr);
+    describeMotion(step, &result->diagnostics);
+    const PreparedFrame& cur = step.current->image;
     const cv::Size size = cur.seg_bgr.size();
     if (step.previous == nullptr) {
       restart();
     } else {
       // previous -> current, so current -> reference is (previous -> reference) * inverse.
-      to_reference_ = to_reference_ * rescaleModel(diag->model, cur.seg_scale).inv();
+      to_reference_ = to_reference_ * rescaleModel(step.model, cur.seg_scale).inv();
       if (overlap(size) < 0.5) restart();
     }
     cv::Mat stabilised, mask_reference, mask;
@@ -69,13 +67,17 @@ class CompensatedMog2Method : public TrackedMethod {
     return mask;
   }
 
+  void reset() override { tracker_.reset(); }
+
+  cv::Mat compensatedPreviousFrame() const override { return tracker_.compensatedPreviousFrame(); }
+
  private:
   void restart() {
     mog2_ = newMog2();
     to_reference_ = cv::Matx33d::eye();
   }
 
-  // Share of the current view's corners' bounding box that lies inside the reference frame.
+  // The share of the reference frame that the current view's bounding box covers.
   double overlap(cv::Size size) const {
     std::vector<cv::Point2f> corners{{0, 0},
                                      {static_cast<float>(size.width), 0},
@@ -87,20 +89,19 @@ class CompensatedMog2Method : public TrackedMethod {
     return (view & reference).area() / reference.area();
   }
 
+  CameraTracker tracker_;
   cv::Ptr<cv::BackgroundSubtractorMOG2> mog2_ = newMog2();
   cv::Matx33d to_reference_ = cv::Matx33d::eye();
 };
 
 }  // namespace
 
-std::unique_ptr<Method> makeMog2Method(const Params& params) {
-  params.check();
-  return std::make_unique<Mog2Method>(params);
+std::unique_ptr<Pipeline> makeMog2Pipeline(const Params& params) {
+  return std::make_unique<Mog2Pipeline>(params);
 }
 
-std::unique_ptr<Method> makeCompensatedMog2Method(const Params& params) {
-  params.check();
-  return std::make_unique<CompensatedMog2Method>(params);
+std::unique_ptr<Pipeline> makeCompensatedMog2Pipeline(const Params& params) {
+  return std::make_unique<CompensatedMog2Pipeline>(params);
 }
 
 }  // namespace movseg

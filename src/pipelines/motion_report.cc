@@ -1,0 +1,25 @@
+#include "pipelines/motion_report.h"
+
+#include <algorithm>
+
+#include "motion/model.h"
+
+namespace movseg {
+
+void describeMotion(const CameraTracker::Step& step, Diagnostics* diag) {
+  const MotionEstimate& motion = step.motion;
+  diag->model = step.model;
+  diag->model_is_affine = isAffine(step.model);
+  diag->features = motion.features;
+  diag->tracks = motion.tracks;
+  diag->matches = static_cast<int>(motion.matches.size());
+  diag->background_matches =
+      static_cast<int>(std::count(motion.background.begin(), motion.background.end(), 1));
+  diag->foreground_matches = diag->matches - diag->background_matches;
+  diag->outer_iterations = motion.outer_iterations;
+  diag->motion_fallback = motion.fallback;
+  diag->prepare_ms = step.prepare_ms;
+  diag->motion_ms = step.motion_ms;
+}
+
+}  // namespace movseg

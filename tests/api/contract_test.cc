@@ -1,0 +1,155 @@
+// What every method promises (movseg/segmenter.h), whichever pipeline Params::method chooses:
+// a 0/255 mask of the frame's size for any supported frame, an empty first frame, a restart on
+// a size change or reset, bit-identical masks for equal input, clear errors for bad frames.
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include "movseg/background_subtractor.h"
+#include "movseg/fields.h"
+#include "movseg/segmenter.h"
+#include "reliability/reliability_fixture.h"
+#include "test_support.h"
+
+namespace movseg {
+namespace {
+
+class Contract : public ::testing::TestWithParam<Method> {
+ protected:
+  Params params() const {
+    Params p;
+    p.method = GetParam();
+    return p;
+  }
+  std::vector<cv::Mat> masksOf(const std::vector<cv::Mat>& frames) const {
+    return test::masksOf(frames, params());
+  }
+};
+
+TEST_P(Contract, FirstFrameIsEmptyAndEveryMaskIsBinaryOfTheFrameSize) {
+  Segmenter segmenter(params());
+  const std::vector<cv::Mat> frames = test::synthFrames(6, 1);
+  for (size_t t = 0; t < frames.size(); ++t) {
+    const Result r = segmenter.process(frames[t]);
+    test::expectValidResult(r, frames[t].size());
+    EXPECT_EQ(r.diagnostics.first_frame, t == 0) << t;
+    if (t == 0) EXPECT_EQ(cv::countNonZero(r.mask), 0);
+  }
+}
+
+// BGRA and 16-bit frames carry the BGR frames' picture, so they give their masks exactly.
+TEST_P(Contract, AcceptsGreyBgra16BitAndFloatFrames) {
+  const std::vector<cv::Mat> bgr = test::synthFrames(4, 2);
+  std::vector<cv::Mat> bgra, deep, grey, real;
+  for (const cv::Mat& f : bgr) {
+    cv::Mat converted;
+    cv::cvtColor(f, converted, cv::COLOR_BGR2BGRA);
+    bgra.push_back(converted);
+    f.convertTo(converted, CV_16UC3, 256);
+    deep.push_back(converted);
+    cv::cvtColor(f, converted, cv::COLOR_BGR2GRAY);
+    grey.push_back(converted);
+    f.convertTo(converted, CV_32FC3, 1.0 / 255);
+    real.push_back(converted);
+  }
+  const std::vector<cv::Mat> expected = masksOf(bgr);
+  EXPECT_TRUE(test::identical(masksOf(bgra), expected));
+  EXPECT_TRUE(test::identical(masksOf(deep), expected));
+  for (const auto* frames : {&grey, &real}) {
+    Segmenter segmenter(params());
+    for (const cv::Mat& f : *frames) test::expectValidResult(segmenter.process(f), f.size());
+  }
+}
+
+TEST_P(Contract, RejectsEmptyFramesAndUnsupportedChannelCounts) {
+  Segmenter segmenter(params());
+  EXPECT_THROW(segmenter.process(cv::Mat()), std::invalid_argument);
+  EXPECT_THROW(segmenter.process(cv::Mat(8, 8, CV_8UC2, cv::Scalar(1, 2))), std::invalid_argument);
+  Params bad = params();
+  bad.gmm_clusters = 0;
+  EXPECT_THROW(Segmenter{bad}, std::invalid_argument);
+  EXPECT_THROW(createMovingCameraSubtractor(bad), std::invalid_argument);
+}
+
+TEST_P(Contract, SizeChangeRestartsTheStream) {
+  const std::vector<cv::Mat> frames = test::synthFrames(3, 3);
+  Segmenter segmenter(params());
+  segmenter.process(frames[0]);
+  segmenter.process(frames[1]);
+  cv::Mat smaller;
+  cv::resize(frames[2], smaller, {160, 120});
+  const Result r = segmenter.process(smaller);
+  test::expectValidResult(r, smaller.size());
+  EXPECT_TRUE(r.diagnostics.reset);
+  EXPECT_TRUE(r.diagnostics.first_frame);
+  EXPECT_EQ(cv::countNonZero(r.mask), 0);
+}
+
+// reset() and the subtractor's clear() forget the stream: the next frame is a first frame.
+TEST_P(Contract, ResetAndClearMakeTheNextFrameAFirstFrame) {
+  const std::vector<cv::Mat> frames = test::synthFrames(3, 4);
+  Segmenter segmenter(params());
+  const cv::Ptr<cv::BackgroundSubtractor> subtractor = createMovingCameraSubtractor(params());
+  cv::Mat mask;
+  for (int t = 0; t < 2; ++t) {
+    segmenter.process(frames[t]);
+    subtractor->apply(frames[t], mask);
+  }
+  segmenter.reset();
+  subtractor->clear();
+  const Result r = segmenter.process(frames[2]);
+  EXPECT_TRUE(r.diagnostics.first_frame);
+  EXPECT_FALSE(r.diagnostics.reset);
+  EXPECT_EQ(cv::countNonZero(r.mask), 0);
+  subtractor->apply(frames[2], mask);
+  EXPECT_EQ(cv::countNonZero(mask), 0);
+}
+
+TEST_P(Contract, TinyFlatAndNoisyFramesGiveValidMasks) {
+  for (const cv::Size size : {cv::Size(1, 1), cv::Size(2, 2), cv::Size(7, 1000), cv::Size(1000, 7),
+                              cv::Size(17, 17)}) {
+    Segmenter segmenter(params());
+    const cv::Mat a = test::texture(size, 1), b = test::texture(size, 2);
+    for (const cv::Mat& frame : {a, b, a}) test::expectValidResult(segmenter.process(frame), size);
+  }
+  Segmenter segmenter(params());
+  for (int i = 0; i < 3; ++i) {
+    cv::Mat noise(240, 320, CV_8UC3);
+    cv::RNG(i + 1).fill(noise, cv::RNG::UNIFORM, 0, 256);
+    test::expectValidResult(segmenter.process(noise), noise.size());
+    const cv::Mat flat(240, 320, CV_8UC3, cv::Scalar::all(40 * i));
+    test::expectValidResult(segmenter.process(flat), flat.size());
+  }
+}
+
+// Equal input gives equal masks, and a caller refilling one buffer (cap >> frame) changes
+// nothing: the segmenter keeps its own copy of the frames it needs.
+TEST_P(Contract, SameInputGivesBitIdenticalMasksWhateverTheBuffer) {
+  const std::vector<cv::Mat> frames = test::synthFrames(8, 5);
+  const std::vector<cv::Mat> expected = masksOf(frames);
+  EXPECT_TRUE(test::identical(masksOf(frames), expected));
+  Segmenter segmenter(params());
+  cv::Mat buffer;
+  std::vector<cv::Mat> reused;
+  for (const cv::Mat& frame : frames) {
+    frame.copyTo(buffer);
+    reused.push_back(segmenter.process(buffer).mask);
+  }
+  EXPECT_TRUE(test::identical(reused, expected));
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryMethod, Contract,
+                         ::testing::Values(Method::kPaper, Method::kDiff, Method::kMog2,
+                                           Method::kMog2Compensated),
+                         [](const ::testing::TestParamInfo<Method>& info) {
+                           std::string name = enumNames<Method>()[static_cast<size_t>(info.param)];
+                           for (char& c : name) c = c == '-' ? '_' : c;
+                           return name;
+                         });
+
+TEST(Contract, EveryMethodIsTested) {
+  EXPECT_EQ(enumNames<Method>().size(), 4u) << "add the new method to EveryMethod above";
+}
+
+}  // namespace
+}  // namespace movseg

@@ -1,0 +1,94 @@
+// The paper's pipeline through the public API: it finds the object, reports the camera model,
+// skips alignment for a static camera and draws each stage's pictures. What every method
+// promises is in contract_test.cc.
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include "motion/motion_fixture.h"
+#include "movseg/segmenter.h"
+#include "test_support.h"
+
+namespace movseg {
+namespace {
+
+double iou(const cv::Mat& a, const cv::Mat& b) {
+  const double inter = cv::countNonZero(a & b), uni = cv::countNonZero(a | b);
+  return uni > 0 ? inter / uni : 1.0;
+}
+
+void expectBinaryMaskOfSize(const Result& r, cv::Size size) {
+  ASSERT_EQ(r.mask.type(), CV_8U);
+  ASSERT_EQ(r.mask.size(), size);
+  EXPECT_EQ(cv::countNonZero((r.mask != 0) & (r.mask != 255)), 0);
+}
+
+test::FramePair movingPair() {
+  test::PairSpec spec;
+  spec.camera = test::similarityAboutCentre(spec.size, 1.5, 1.01, {3, -2});
+  spec.object_fraction = 0.15;
+  return test::makePair(spec);
+}
+
+TEST(Segmenter, FirstFrameIsEmptyThenTheObjectIsFound) {
+  const test::FramePair pair = movingPair();
+  Segmenter segmenter;
+  const Result first = segmenter.process(pair.prev);
+  expectBinaryMaskOfSize(first, pair.prev.size());
+  EXPECT_TRUE(first.diagnostics.first_frame);
+  EXPECT_EQ(cv::countNonZero(first.mask), 0);
+
+  const Result second = segmenter.process(pair.cur);
+  expectBinaryMaskOfSize(second, pair.cur.size());
+  EXPECT_FALSE(second.diagnostics.first_frame);
+  EXPECT_GT(iou(second.mask, pair.cur_mask), 0.85);
+  EXPECT_GT(second.diagnostics.foreground_seeds, 5);
+  EXPECT_GT(second.diagnostics.background_seeds, 50);
+  EXPECT_GT(second.diagnostics.matches, 50);
+  EXPECT_GT(second.diagnostics.total_ms, 0.0);
+  EXPECT_FALSE(second.features.empty());
+}
+
+TEST(Segmenter, ReportsTheCameraModelInFullResolutionPixels) {
+  test::PairSpec spec;
+  spec.size = {640, 480};
+  spec.camera = test::similarityAboutCentre(spec.size, 1, 1.0, {8, -4});
+  spec.object_fraction = 0.1;
+  const test::FramePair pair = test::makePair(spec);
+  Segmenter segmenter;
+  segmenter.process(pair.prev);
+  const Result r = segmenter.process(pair.cur);
+  EXPECT_TRUE(r.diagnostics.model_is_affine);
+  EXPECT_LT(test::cornerError(r.diagnostics.model, spec.camera, spec.size), 1.0);
+}
+
+TEST(Segmenter, StaticCameraModeSkipsAlignment) {
+  test::PairSpec spec;
+  spec.object_fraction = 0.15;
+  const test::FramePair pair = test::makePair(spec);  // identity camera
+  Params params;
+  params.static_camera = true;
+  Segmenter segmenter(params);
+  segmenter.process(pair.prev);
+  const Result r = segmenter.process(pair.cur);
+  EXPECT_EQ(r.diagnostics.model, cv::Matx33d::eye());
+  EXPECT_EQ(r.diagnostics.matches, 0);
+  EXPECT_GT(iou(r.mask, pair.cur_mask), 0.85);
+}
+
+TEST(Segmenter, DebugPicturesWhenAsked) {
+  const test::FramePair pair = movingPair();
+  Params params;
+  params.debug_images = true;
+  Segmenter segmenter(params);
+  segmenter.process(pair.prev);
+  const Result r = segmenter.process(pair.cur);
+  for (const char* name : {"matches", "difference", "features", "features_refined", "confidence", "mask"}) {
+    ASSERT_TRUE(r.debug.count(name)) << name;
+    EXPECT_FALSE(r.debug.at(name).empty()) << name;
+  }
+  EXPECT_FALSE(segmenter.compensatedPreviousFrame().empty());
+}
+
+}  // namespace
+}  // namespace movseg
