@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <random>
 
@@ -34,6 +35,13 @@ CommandResult runCli(const std::string& arguments) {
   const int status = pclose(pipe);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
+}
+
+std::string davisSequence(const std::string& name) {
+  const char* data = std::getenv("MOVSEG_DATA");
+  const std::string root = data != nullptr ? data : std::string(MOVSEG_SOURCE_DIR) + "/../shared/data";
+  const std::string folder = root + "/davis2016/" + name;
+  return std::filesystem::is_directory(folder + "/frames") ? folder : "";
 }
 
 }  // namespace movseg::test

@@ -27,6 +27,10 @@ struct CommandResult {
 // Runs build/movseg with `arguments` (a shell-quoted string) and captures its output.
 CommandResult runCli(const std::string& arguments);
 
+// The folder of a DAVIS 2016 sequence (frames/, masks/) under $MOVSEG_DATA/davis2016, or the
+// shared data next to the source tree; "" when it is not there (tests then skip).
+std::string davisSequence(const std::string& name);
+
 }  // namespace movseg::test
 
 #include <cstdint>

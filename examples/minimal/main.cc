@@ -13,7 +13,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   cv::VideoCapture video(argv[1]);
-  movseg::Params params;  // every field is documented in movseg/params.h
+  movseg::Params params;  // every field is documented in movseg/params.def
   params.static_camera = false;  // true for a fixed camera: no alignment
   movseg::Segmenter segmenter(params);
   for (int index = 0;; ++index) {

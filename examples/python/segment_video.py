@@ -8,7 +8,7 @@ import cv2
 import movseg
 
 video = cv2.VideoCapture(sys.argv[1])
-# Any field of include/movseg/params.h by name; static_camera=True suits a fixed camera.
+# Any field of include/movseg/params.def by name; static_camera=True suits a fixed camera.
 segmenter = movseg.Segmenter(movseg.Params(static_camera=False))
 index = 0
 while True:

@@ -8,10 +8,11 @@
 
 namespace movseg {
 
-// apply(frame, fgmask, learningRate) runs Segmenter::process(frame) and writes its 0 / 255 mask
-// to fgmask; learningRate is ignored, because every mask comes from the last two frames only
-// (there is no background model to learn). getBackgroundImage() gives
-// Segmenter::compensatedPreviousFrame(). Throws std::invalid_argument when params.check() fails.
+// apply(frame, fgmask, learningRate) runs Segmenter::process(frame) with the method of
+// params.method and writes its 0 / 255 mask to fgmask; learningRate (and the known foreground
+// mask of newer OpenCV's four-argument apply) is ignored: the methods keep their own memory.
+// getBackgroundImage() gives Segmenter::compensatedPreviousFrame(); clear() forgets the stream,
+// as Segmenter::reset() does. Throws std::invalid_argument when params.check() fails.
 cv::Ptr<cv::BackgroundSubtractor> createMovingCameraSubtractor(const Params& params = Params());
 
 }  // namespace movseg

@@ -1,5 +1,5 @@
 // Minimum s-t cut of the graph of eq. (6), behind one small description so that max-flow
-// implementations can be swapped and compared (bench/cut_bench.cc, docs/design.md).
+// implementations can be swapped and compared (BM_GraphCut in bench/pipeline_bench.cc, docs/design.md).
 #pragma once
 
 #include <cstdint>

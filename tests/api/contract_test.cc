@@ -33,7 +33,9 @@ TEST_P(Contract, FirstFrameIsEmptyAndEveryMaskIsBinaryOfTheFrameSize) {
     const Result r = segmenter.process(frames[t]);
     test::expectValidResult(r, frames[t].size());
     EXPECT_EQ(r.diagnostics.first_frame, t == 0) << t;
-    if (t == 0) EXPECT_EQ(cv::countNonZero(r.mask), 0);
+    if (t == 0) {
+      EXPECT_EQ(cv::countNonZero(r.mask), 0);
+    }
   }
 }
 
@@ -141,8 +143,8 @@ TEST_P(Contract, SameInputGivesBitIdenticalMasksWhateverTheBuffer) {
 INSTANTIATE_TEST_SUITE_P(EveryMethod, Contract,
                          ::testing::Values(Method::kPaper, Method::kDiff, Method::kMog2,
                                            Method::kMog2Compensated),
-                         [](const ::testing::TestParamInfo<Method>& info) {
-                           std::string name = enumNames<Method>()[static_cast<size_t>(info.param)];
+                         [](const ::testing::TestParamInfo<Method>& param_info) {
+                           std::string name = enumNames<Method>()[static_cast<size_t>(param_info.param)];
                            for (char& c : name) c = c == '-' ? '_' : c;
                            return name;
                          });

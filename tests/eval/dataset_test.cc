@@ -236,12 +236,8 @@ TEST(EvalDataset, DatasetGivesOneRowPerSequenceAndAMean) {
 }
 
 TEST(EvalDataset, DavisGroundTruthAgainstItselfIsPerfect) {
-  const char* data = std::getenv("MOVSEG_DATA");
-  const std::string sequence_dir =
-      std::string(data != nullptr ? data : "/work/shared/data") + "/davis2016/car-shadow";
-  if (!std::filesystem::is_directory(sequence_dir)) {
-    GTEST_SKIP() << "no DAVIS data at " << sequence_dir << " (set MOVSEG_DATA)";
-  }
+  const std::string sequence_dir = test::davisSequence("car-shadow");
+  if (sequence_dir.empty()) GTEST_SKIP() << "no DAVIS data (set MOVSEG_DATA)";
   const GtSequence sequence = loadGroundTruth(sequence_dir, GtFormat::kAuto).at(0);
   EXPECT_EQ(sequence.format, GtFormat::kDavis);
   const SequenceScore score = scoreSequence(sequence, predictionDir(sequence, sequence_dir));
