@@ -46,7 +46,7 @@ test-fuzz: deps
 	@echo "test-fuzz: libFuzzer + ASan + UBSan build in $(FUZZ_DIR)"
 	@cmake -S . -B $(FUZZ_DIR) -DCMAKE_CXX_COMPILER=clang++ $(SANITIZE_FLAGS) -DMOVSEG_FUZZ=ON \
 	  -DMOVSEG_BUILD_TESTS=OFF >/dev/null
-	@cmake --build $(FUZZ_DIR) -j $(JOBS) --target segmenter_fuzz readers_fuzz
+	@cmake --build $(FUZZ_DIR) -j $(JOBS) --target segmenter_fuzz readers_fuzz video_fuzz
 	@bash fuzz/run.sh $(FUZZ_DIR) $(FUZZ_SECONDS)
 
 bench: deps

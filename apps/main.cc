@@ -1,4 +1,5 @@
 // build/movseg: segment moving objects, make synthetic test video, evaluate and benchmark.
+#include <csignal>
 #include <cstdlib>
 #include <exception>
 #include <iostream>
@@ -8,6 +9,8 @@
 
 #include "commands.h"
 
+namespace {
+
 // Errors reach the user as one line of ours; FFmpeg's and OpenCV's own chatter ("moov atom not
 // found", imread warnings) would add lines around it. An explicit environment setting wins.
 void quietLibraries() {
@@ -15,13 +18,34 @@ void quietLibraries() {
   cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_ERROR);
 }
 
+// Writes report their errors instead of killing the process: a closed stdout (movseg ... | head)
+// and a file-size limit (ulimit -f) become failed writes, not deaths by SIGPIPE or SIGXFSZ.
+void reportFailedWrites() {
+  std::signal(SIGPIPE, SIG_IGN);
+  std::signal(SIGXFSZ, SIG_IGN);
+}
+
+// One line whatever the message holds (a file name may contain a newline).
+std::string oneLine(std::string text) {
+  for (char& c : text) c = c == '\n' || c == '\r' ? ' ' : c;
+  return text;
+}
+
+int fail(int code, const std::exception& e) {
+  std::cerr << "movseg: error: " << oneLine(e.what()) << std::endl;
+  return code;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   quietLibraries();
+  reportFailedWrites();
   cv::setNumThreads(1);  // per-frame work is small; one core per stream is the design point
   CLI::App app{"movseg: moving object segmentation for freely moving cameras"};
   app.require_subcommand(1);
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
-    return std::string("movseg: error: ") + e.what() + "\n";
+    return "movseg: error: " + oneLine(e.what()) + "\n";
   });
   movseg::cli::addSegmentCommand(app);
   movseg::cli::addSynthCommand(app);
@@ -30,11 +54,17 @@ int main(int argc, char** argv) {
   movseg::cli::addBenchCommand(app);
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::Success& e) {  // --help
     return app.exit(e);
+  } catch (const CLI::RuntimeError& e) {  // a command's own exit code (an interrupted run)
+    return e.get_exit_code();
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return movseg::cli::kExitUsage;
+  } catch (const movseg::cli::UsageError& e) {
+    return fail(movseg::cli::kExitUsage, e);
   } catch (const std::exception& e) {
-    std::cerr << "movseg: error: " << e.what() << "\n";
-    return 1;
+    return fail(movseg::cli::kExitRunFailed, e);
   }
   return 0;
 }

@@ -1,7 +1,10 @@
 // Helpers shared by the tests.
 #pragma once
 
+#include <sys/types.h>
+
 #include <string>
+#include <vector>
 
 namespace movseg::test {
 
@@ -26,6 +29,23 @@ struct CommandResult {
 
 // Runs build/movseg with `arguments` (a shell-quoted string) and captures its output.
 CommandResult runCli(const std::string& arguments);
+
+// runCli() under a file-size limit (RLIMIT_FSIZE, as a full disk): a write past `bytes` fails.
+CommandResult runCliWithFileLimit(long bytes, const std::string& arguments);
+
+// Expects a non-zero exit (`code` when given) and exactly one line "movseg: error: ..." naming
+// `needle`.
+void expectOneLineError(const CommandResult& result, const std::string& needle, int code = -1);
+
+// `movseg ARGS...` started in the background, its stdout and stderr going to `log`; its pid.
+pid_t startCli(const std::vector<std::string>& args, const std::string& log);
+
+// Runs a shell command, its output discarded; its exit code.
+int runShell(const std::string& command);
+
+// Makes a video with FFmpeg's command-line tool: `ffmpeg -v error -y ARGUMENTS`; false when it
+// failed or ffmpeg is missing (tests then fail: scripts/install-deps.sh installs it).
+bool ffmpeg(const std::string& arguments);
 
 // The folder of a DAVIS 2016 sequence (frames/, masks/) under $MOVSEG_DATA/davis2016, or the
 // shared data next to the source tree; "" when it is not there (tests then skip).

@@ -49,15 +49,23 @@ class Segmenter {
   Segmenter& operator=(const Segmenter&) = delete;
 
   // Takes the next frame: 8-bit or 16-bit, grey, BGR or BGRA, at least 1x1. Returns the mask of
-  // what moves in it. Throws std::invalid_argument for an empty frame or an unsupported type;
-  // never throws for a hard scene (flat, noisy, scene cut): see Diagnostics' flags.
+  // what moves in it; never throws for a hard scene (flat, noisy, scene cut): see Diagnostics'
+  // flags. Each stream runs within the per-frame work limit of its frame size
+  // (Diagnostics::work_limited). No OpenCV exception leaves it; it throws only:
+  //  - std::invalid_argument (Python: ValueError) for a frame it does not take: empty, an
+  //    unsupported type, or too large for OpenCV's warps at a working scale (a side of 32767
+  //    pixels or more at alignment_width or segmentation_width). Nothing has changed: the next
+  //    frame continues the stream.
+  //  - std::runtime_error (Python: RuntimeError) when OpenCV fails on a frame it took (out of
+  //    memory above all). The stream restarts: the next frame is a first frame.
   Result process(const cv::Mat& frame);
 
   // Forgets the previous frame: the next frame is treated as a first frame.
   void reset();
 
   // The previous frame warped into the last processed frame's coordinates (8-bit BGR); empty
-  // before the second frame.
+  // before the second frame. Throws std::runtime_error when OpenCV cannot warp it (a frame of
+  // 32767 pixels or more a side).
   cv::Mat compensatedPreviousFrame() const;
 
   const Params& params() const;

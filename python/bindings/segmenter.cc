@@ -1,4 +1,5 @@
 // movseg.Segmenter, and movseg.createMovingCameraSubtractor for code written for cv2's MOG2.
+#include <cstdint>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
@@ -52,11 +53,13 @@ py::object apply(PySubtractor& subtractor, const py::array& image, const py::obj
   if (!py::isinstance<py::array>(fgmask) || !fgmask.cast<py::array>().writeable()) {
     throw std::invalid_argument("fgmask must be a writeable numpy array");
   }
-  cv::Mat out = matFromArray(fgmask.cast<py::array>());
-  if (out.size() != mask.size() || out.type() != mask.type()) {
+  const auto out = fgmask.cast<py::array>();
+  if (out.ndim() != 2 || !py::isinstance<py::array_t<std::uint8_t>>(out) ||
+      out.shape(0) != mask.rows || out.shape(1) != mask.cols) {
     throw std::invalid_argument("fgmask must be an HxW uint8 array of the frame's size");
   }
-  mask.copyTo(out);
+  // numpy writes in place whatever the array's strides (a view, Fortran order).
+  out.attr("__setitem__")(py::ellipsis(), arrayFromMat(mask));
   return fgmask;
 }
 

@@ -4,6 +4,7 @@
 
 #include "classify/classify.h"
 #include "classify/classify_debug.h"
+#include "classify/scene_cut.h"
 #include "core/timing.h"
 #include "cut/cut_debug.h"
 #include "cut/graph_cut.h"
@@ -87,6 +88,7 @@ class PaperPipeline : public Pipeline {
     const cv::Mat difference = compensatedDifference(  // eq. (4)
         prev.seg_smooth, cur.seg_smooth, rescaleModel(step.model, cur.seg_scale));
     debug.put("difference", [&] { return drawDifference(difference); });
+    diag.scene_cut = isSceneCut(difference);
     const std::vector<cv::Point2f> points = featuresAtSegmentationScale(*step.current);
     const FeatureClasses classes = classifyFeatures(
         difference, cur.seg_bgr, points, step.staticPoints(cur.seg_scale), params_);

@@ -28,3 +28,14 @@ def test_bad_fgmask_or_frame_raise_value_error(frames):
         subtractor.apply(frames[0], np.empty((3, 3), np.uint8))
     with pytest.raises(ValueError):
         subtractor.apply(np.zeros((4, 4, 2), np.uint8))
+
+
+@pytest.mark.parametrize("layout", ["view", "fortran"])
+def test_fgmask_of_any_layout_is_written_in_place(frames, cli_masks, layout):
+    subtractor = movseg.createMovingCameraSubtractor()
+    height, width = frames[0].shape[:2]
+    big = np.zeros((2 * height, 2 * width), np.uint8)
+    fgmask = big[::2, ::2] if layout == "view" else np.zeros((height, width), np.uint8, order="F")
+    for index, frame in enumerate(frames[:2]):
+        assert subtractor.apply(frame, fgmask) is fgmask
+        assert np.array_equal(fgmask, cli_masks[index]), f"frame {index}"

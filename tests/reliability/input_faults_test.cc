@@ -1,0 +1,228 @@
+// Issue 15's input faults through `movseg segment`: a video whose frame size changes midway,
+// damaged and truncated videos, silent and stalled streams, special files; and issue 14's one
+// input grammar (printf patterns, sequence folders).
+#include <netinet/in.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+#include <thread>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "reliability/reliability_fixture.h"
+#include "test_support.h"
+
+namespace movseg {
+namespace {
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+constexpr int kRunFailed = 1;
+
+std::string h264(const test::TempDir& dir, const std::string& name, const std::string& size, int frames,
+                 const std::string& extra = "") {
+  EXPECT_TRUE(test::ffmpeg("-f lavfi -i testsrc2=size=" + size + ":rate=25 -frames:v " +
+                           std::to_string(frames) + " -c:v libx264 -pix_fmt yuv420p " + extra + " " +
+                           dir / name));
+  return dir / name;
+}
+
+std::vector<nlohmann::json> statsLines(const std::string& path) {
+  std::vector<nlohmann::json> lines;
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line)) lines.push_back(nlohmann::json::parse(line));
+  return lines;
+}
+
+TEST(InputFaults, AVideoWhoseSizeChangesRestartsTheSegmenterOnEachPart) {
+  const test::TempDir dir;
+  h264(dir, "a.mp4", "320x240", 8);
+  h264(dir, "b.mp4", "256x144", 8);
+  { std::ofstream(dir / "list.txt") << "file 'a.mp4'\nfile 'b.mp4'\n"; }
+  ASSERT_TRUE(test::ffmpeg("-f concat -safe 0 -i " + dir / "list.txt" + " -c copy " + dir / "ab.mkv"));
+  const test::CommandResult r =
+      test::runCli("segment " + dir / "ab.mkv" + " -o " + dir / "out" + " --stats " + dir / "s.jsonl");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("1 size resets"), std::string::npos) << r.output;
+  const std::vector<nlohmann::json> lines = statsLines(dir / "s.jsonl");
+  ASSERT_EQ(lines.size(), 16u);
+  for (size_t i = 0; i < lines.size(); ++i) EXPECT_EQ(lines[i].at("reset").get<bool>(), i == 8) << i;
+  EXPECT_EQ(cv::imread(dir / "out/00007.png", cv::IMREAD_UNCHANGED).size(), cv::Size(320, 240));
+  EXPECT_EQ(cv::imread(dir / "out/00008.png", cv::IMREAD_UNCHANGED).size(), cv::Size(256, 144));
+  // Test pattern in, no camera motion: a scrambled part would light the masks up.
+  for (int i = 9; i < 16; ++i) {
+    char name[16];
+    std::snprintf(name, sizeof name, "%05d.png", i);
+    EXPECT_LT(test::foregroundShare(cv::imread(dir / "out/" + name, cv::IMREAD_GRAYSCALE)), 0.2) << name;
+  }
+}
+
+std::string damaged(const test::TempDir& dir) {
+  const std::string path = h264(dir, "d.mkv", "320x240", 40);
+  std::fstream file(path, std::ios::in | std::ios::out | std::ios::binary);
+  file.seekp(static_cast<std::streamoff>(fs::file_size(path) * 4 / 10));
+  std::mt19937 random(7);
+  for (int i = 0; i < 4096; ++i) file.put(static_cast<char>(random()));
+  return path;
+}
+
+TEST(InputFaults, ADamagedVideoIsSegmentedAndReportedAsFailed) {
+  const test::TempDir dir;
+  const std::string video = damaged(dir);
+  const test::CommandResult r = test::runCli("segment " + video + " -o " + dir / "out" + " -q --stats " +
+                                             dir / "s.jsonl");
+  test::expectOneLineError(r, "decode errors", kRunFailed);
+  const std::vector<nlohmann::json> lines = statsLines(dir / "s.jsonl");
+  EXPECT_GT(lines.size(), 20u);
+  int errors = 0;
+  for (const nlohmann::json& line : lines) errors += line.at("decode_errors").get<int>();
+  EXPECT_GT(errors, 0);
+  const nlohmann::json manifest = nlohmann::json::parse(std::ifstream(dir / "out/movseg-run.json"));
+  EXPECT_GT(manifest.at("decode_errors").get<int>(), 0);
+  EXPECT_EQ(manifest.at("frames_done").get<size_t>(), lines.size());
+}
+
+TEST(InputFaults, StopOnDecodeErrorStopsAtTheFirst) {
+  const test::TempDir dir;
+  const std::string video = damaged(dir);
+  const test::CommandResult r =
+      test::runCli("segment " + video + " -o " + dir / "out" + " -q --stop-on-decode-error");
+  test::expectOneLineError(r, "decode error", kRunFailed);
+  const size_t masks = test::filesIn(dir / "out").size() - 1;  // and the manifest
+  EXPECT_GT(masks, 0u);
+  EXPECT_LT(masks, 30u);
+}
+
+TEST(InputFaults, ATruncatedVideoIsReported) {
+  const test::TempDir dir;
+  for (const std::string name : {"t.mp4", "t.mkv"}) {
+    const std::string video = h264(dir, name, "320x240", 50, name == "t.mp4" ? "-movflags +faststart" : "");
+    fs::resize_file(video, fs::file_size(video) / 2);
+    const test::CommandResult r = test::runCli("segment " + video + " -o " + dir / ("out-" + name) + " -q");
+    test::expectOneLineError(r, "truncated", kRunFailed);
+  }
+}
+
+// A local server: accepts and never answers, or answers with the start of a video and stalls.
+class LocalServer {
+ public:
+  explicit LocalServer(std::string first_bytes = "") : bytes_(std::move(first_bytes)) {
+    fd_ = socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    bind(fd_, reinterpret_cast<sockaddr*>(&address), sizeof address);
+    socklen_t length = sizeof address;
+    getsockname(fd_, reinterpret_cast<sockaddr*>(&address), &length);
+    port_ = ntohs(address.sin_port);
+    listen(fd_, 4);
+    if (!bytes_.empty()) server_ = std::thread([this] { serveOnce(); });
+  }
+  ~LocalServer() {
+    shutdown(fd_, SHUT_RDWR);
+    close(fd_);
+    if (server_.joinable()) server_.join();
+  }
+  std::string url() const { return "http://127.0.0.1:" + std::to_string(port_) + "/v.mkv"; }
+
+ private:
+  void serveOnce() {
+    const int client = accept(fd_, nullptr, nullptr);
+    if (client < 0) return;
+    const std::string head = "HTTP/1.0 200 OK\r\nContent-Type: video/x-matroska\r\n\r\n";
+    send(client, head.data(), head.size(), MSG_NOSIGNAL);
+    send(client, bytes_.data(), bytes_.size(), MSG_NOSIGNAL);
+    char ignored[256];
+    while (recv(client, ignored, sizeof ignored, 0) > 0) {}  // until the reader hangs up
+    close(client);
+  }
+
+  int fd_ = -1;
+  int port_ = 0;
+  std::string bytes_;
+  std::thread server_;
+};
+
+TEST(InputFaults, ASilentServerFailsAtTheTimeout) {
+  const test::TempDir dir;
+  const LocalServer server;
+  const auto start = Clock::now();
+  const test::CommandResult r =
+      test::runCli("segment " + server.url() + " -o " + dir / "out" + " --timeout 1");
+  test::expectOneLineError(r, "cannot open video", kRunFailed);
+  EXPECT_LT(Clock::now() - start, std::chrono::seconds(4));
+}
+
+TEST(InputFaults, AStalledStreamStopsWithinASecondOfSigint) {
+  const test::TempDir dir;
+  const std::string video = h264(dir, "v.mkv", "320x240", 100);
+  std::ifstream in(video, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  bytes.resize(bytes.size() / 2);  // then silence
+  const LocalServer server(bytes);
+  const pid_t pid = test::startCli({"segment", server.url(), "-o", dir / "out", "-q", "--timeout", "0"},
+                                   dir / "log.txt");
+  ASSERT_GT(pid, 0);
+  const auto wait_end = Clock::now() + std::chrono::seconds(60);
+  while (!fs::exists(dir / "out/00005.png") && Clock::now() < wait_end) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // it has read all there is
+  const auto signalled = Clock::now();
+  kill(pid, SIGINT);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  EXPECT_LT(Clock::now() - signalled, std::chrono::seconds(1));
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+}
+
+TEST(InputFaults, SpecialFilesAreNamedForWhatTheyAre) {
+  const test::TempDir dir;
+  test::expectOneLineError(test::runCli("segment /dev/null -o " + dir / "out"),
+                           "cannot open video '/dev/null'", kRunFailed);
+  // A FIFO is a stream like any other.
+  ASSERT_EQ(mkfifo((dir / "fifo").c_str(), 0600), 0);
+  const std::string video = h264(dir, "v.mkv", "160x120", 6);
+  std::thread writer([&] { test::runShell("cat " + video + " > " + dir / "fifo"); });
+  const test::CommandResult r = test::runCli("segment " + dir / "fifo" + " -o " + dir / "out" + " -q");
+  writer.join();
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(dir / "out/00005.png"));
+}
+
+// One input grammar: a frames folder, its sequence folder, and a printf pattern give the same.
+TEST(InputGrammar, PatternsAndSequenceFoldersReadTheSameFrames) {
+  const test::TempDir dir;
+  ASSERT_EQ(test::runCli("synth -o " + dir / "seq" + " --frames 4 --size 96x72").exit_code, 0);
+  const std::string inputs[] = {dir / "seq/frames", dir / "seq", dir / "seq/frames/%05d.png"};
+  for (size_t i = 0; i < 3; ++i) {
+    const test::CommandResult r =
+        test::runCli("segment " + inputs[i] + " -o " + dir / ("out" + std::to_string(i)) + " -q");
+    ASSERT_EQ(r.exit_code, 0) << inputs[i] << "\n" << r.output;
+  }
+  for (const std::string& name : test::filesIn(dir / "seq/frames")) {
+    const cv::Mat first = cv::imread(dir / "out0/" + name, cv::IMREAD_UNCHANGED);
+    for (const char* other : {"out1/", "out2/"}) {
+      EXPECT_EQ(cv::norm(first, cv::imread(dir / other + name, cv::IMREAD_UNCHANGED), cv::NORM_INF), 0)
+          << other << name;
+    }
+  }
+  test::expectOneLineError(test::runCli("segment " + dir / "seq/frames/%05d.jpg -o " + dir / "x"),
+                           "no image matches", kRunFailed);
+}
+
+}  // namespace
+}  // namespace movseg
