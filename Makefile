@@ -6,12 +6,14 @@ CMAKE_FLAGS ?=
 # `make test` also runs the sanitizer build and the fuzz smoke runs (docs/reliability.md).
 ASAN_DIR ?= build-asan
 FUZZ_DIR ?= build-fuzz
+TSAN_DIR ?= build-tsan
 FUZZ_SECONDS ?= 60
 # -O1: sanitized code stays fast and its stack traces readable. No -DNDEBUG: asserts are on.
+comma := ,
 SANITIZE_FLAGS = -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" \
   -DMOVSEG_SANITIZE=address,undefined -DMOVSEG_BUILD_BENCH=OFF
 
-.PHONY: all build deps run test test-sanitize test-fuzz bench long-run clean
+.PHONY: all build deps run test test-sanitize test-fuzz test-tsan bench long-run clean
 
 all: build
 
@@ -31,6 +33,7 @@ test: deps
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 	@$(MAKE) --no-print-directory test-fuzz
 	@$(MAKE) --no-print-directory test-sanitize
+	@$(MAKE) --no-print-directory test-tsan
 
 # The whole test suite built with AddressSanitizer and UndefinedBehaviorSanitizer; the first
 # report aborts its test.
@@ -40,6 +43,16 @@ test-sanitize: deps
 	@cmake --build $(ASAN_DIR) -j $(JOBS)
 	@cd $(ASAN_DIR) && ASAN_OPTIONS=halt_on_error=1:detect_leaks=1 \
 	  UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 ctest --output-on-failure -j $(JOBS)
+
+# ThreadSanitizer on the tests that run threads: Segmenters on concurrent threads and with two
+# OpenCV threads, a decoder stopped from another thread. Only those run: the rest of the suite
+# is single-threaded, and the sanitizer build above covers it.
+TSAN_TESTS = Determinism.*:VideoDecoder.AStopFlag*
+test-tsan: deps
+	@echo "test-tsan: ThreadSanitizer build in $(TSAN_DIR)"
+	@cmake -S . -B $(TSAN_DIR) $(subst address$(comma)undefined,thread,$(SANITIZE_FLAGS)) >/dev/null
+	@cmake --build $(TSAN_DIR) -j $(JOBS) --target movseg_tests
+	@cd $(TSAN_DIR) && TSAN_OPTIONS=halt_on_error=1 tests/movseg_tests --gtest_filter='$(TSAN_TESTS)'
 
 # libFuzzer (clang) on fuzz/'s targets, FUZZ_SECONDS each from the committed corpus.
 test-fuzz: deps
@@ -60,4 +73,4 @@ long-run: deps
 	@$(BUILD_DIR)/bench/movseg_long_run
 
 clean:
-	@rm -rf $(BUILD_DIR) $(ASAN_DIR) $(FUZZ_DIR)
+	@rm -rf $(BUILD_DIR) $(ASAN_DIR) $(FUZZ_DIR) $(TSAN_DIR)

@@ -320,10 +320,11 @@ class RunOutputs {
     manifest_.update(frames_, source_, false);
   }
 
-  void finish(const SourceReport& source) {
+  // `whole`: the run did all it was asked (not stopped by a signal).
+  void finish(const SourceReport& source, bool whole) {
     source_ = source;
     finished_ = true;
-    complete(true);
+    complete(whole);
   }
 
  private:
@@ -410,7 +411,7 @@ SegmentSummary runSegmentation(const SegmentOptions& options) {
   summary.interrupted = g_stop;
   progress.finish();
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  outputs.finish(summary.source);
+  outputs.finish(summary.source, !summary.interrupted);
   if (summary.frames == 0 && !summary.interrupted && !summary.reached_max_frames) {
     throw std::runtime_error("no frames in '" + options.input + "'" +
                              (summary.source.timed_out ? " (no answer within the timeout)" : ""));

@@ -47,7 +47,8 @@ TEST(SegmentCli, WritesOneMaskPerFrameAndStatsLines) {
     EXPECT_EQ(j.at("model").size(), 3u);  // 3 rows of 3
     EXPECT_EQ(j.at("model")[0].size(), 3u);
     for (const FieldInfo& field : diagnosticFields()) EXPECT_TRUE(j.contains(field.name)) << field.name;
-    EXPECT_EQ(j.size(), diagnosticFields().size() + 1);  // and "frame"
+    EXPECT_EQ(j.size(), diagnosticFields().size() + 2);  // and "frame", "decode_errors"
+    EXPECT_EQ(j.at("decode_errors").get<int>(), 0);
     EXPECT_GT(j.at("total_ms").get<double>(), 0.0);
     EXPECT_EQ(j.at("first_frame").get<bool>(), lines == 0);
     ++lines;

@@ -1,5 +1,5 @@
-// Scene cuts: the rule on difference images, and its figure on real cuts between DAVIS
-// sequences (docs/reliability.md; skipped without the data).
+// Scene cuts: the rule on difference images, and on real cuts between six DAVIS sequences
+// (docs/reliability.md has the figure for all fifteen; skipped without the data).
 #include "classify/scene_cut.h"
 
 #include <filesystem>
@@ -16,17 +16,25 @@
 namespace movseg {
 namespace {
 
-TEST(SceneCut, TheMedianDifferenceDecides) {
+TEST(SceneCut, TheMedianDifferenceOverTheCoveredPixelsDecides) {
   const cv::Size size(40, 30);
-  EXPECT_FALSE(isSceneCut(cv::Mat(size, CV_32F, cv::Scalar(0))));
-  EXPECT_FALSE(isSceneCut(cv::Mat(size, CV_32F, cv::Scalar(kSceneCutMedianDifference))));
-  EXPECT_TRUE(isSceneCut(cv::Mat(size, CV_32F, cv::Scalar(kSceneCutMedianDifference + 1))));
-  cv::Mat half(size, CV_32F, cv::Scalar(0));
-  half.rowRange(0, 14) = 10000;  // less than half the picture differs: something moved
-  EXPECT_FALSE(isSceneCut(half));
-  half.rowRange(0, 16) = 10000;  // more than half
-  EXPECT_TRUE(isSceneCut(half));
-  EXPECT_FALSE(isSceneCut(cv::Mat()));
+  const cv::Matx33d same = cv::Matx33d::eye();
+  EXPECT_FALSE(isSceneCut(cv::Mat(size, CV_32F, cv::Scalar(0)), same));
+  EXPECT_FALSE(isSceneCut(cv::Mat(size, CV_32F, cv::Scalar(kSceneCutMedianDifference)), same));
+  EXPECT_TRUE(isSceneCut(cv::Mat(size, CV_32F, cv::Scalar(kSceneCutMedianDifference + 1)), same));
+  cv::Mat part(size, CV_32F, cv::Scalar(0));
+  part.rowRange(0, 14) = 10000;  // less than half the picture differs: something moved
+  EXPECT_FALSE(isSceneCut(part, same));
+  part.rowRange(0, 16) = 10000;  // more than half
+  EXPECT_TRUE(isSceneCut(part, same));
+  EXPECT_FALSE(isSceneCut(cv::Mat(), same));
+}
+
+TEST(SceneCut, AModelThatMapsThePreviousFrameMostlyAwayIsACut) {
+  const cv::Mat flat(30, 40, CV_32F, cv::Scalar(0));  // the uncovered pixels read d = 0
+  EXPECT_FALSE(isSceneCut(flat, cv::Matx33d(1, 0, 15, 0, 1, 0, 0, 0, 1)));  // 62 % covered
+  EXPECT_TRUE(isSceneCut(flat, cv::Matx33d(1, 0, 25, 0, 1, 0, 0, 0, 1)));   // 37 % covered
+  EXPECT_TRUE(isSceneCut(flat, cv::Matx33d(0.2, 0, 0, 0, 0.2, 0, 0, 0, 1)));
 }
 
 std::vector<std::string> frameFiles(const std::string& sequence) {
@@ -37,8 +45,8 @@ std::vector<std::string> frameFiles(const std::string& sequence) {
 // of the other) is flagged; no pair of consecutive frames of the first 20 of each sequence is.
 TEST(SceneCut, FlagsRealCutsAndNoConsecutiveFrames) {
   std::vector<std::string> sequences;
-  for (const char* name : {"blackswan", "bmx-trees", "breakdance", "car-roundabout", "car-shadow",
-                           "cows", "dance-twirl", "dog", "drift-straight", "goat"}) {
+  for (const char* name : {"blackswan", "breakdance", "car-roundabout", "dance-twirl", "dog",
+                           "drift-straight"}) {
     const std::string folder = test::davisSequence(name);
     if (!folder.empty()) sequences.push_back(folder);
   }
@@ -61,7 +69,9 @@ TEST(SceneCut, FlagsRealCutsAndNoConsecutiveFrames) {
       ++cuts;
       flagged += r.diagnostics.scene_cut;
       EXPECT_TRUE(r.diagnostics.scene_cut) << a << " > " << b;
-      if (r.diagnostics.scene_cut) EXPECT_EQ(cv::countNonZero(r.mask), 0);
+      if (r.diagnostics.scene_cut) {
+        EXPECT_EQ(cv::countNonZero(r.mask), 0);
+      }
     }
   }
   std::printf("scene cuts flagged: %d of %d; consecutive pairs flagged: %d of %d\n", flagged, cuts,

@@ -167,7 +167,7 @@ TEST(DegenerateScenes, OneFrameVideoThroughTheCliGivesOneEmptyMask) {
                                 " --stats " + (dir / "stats.jsonl") + " -q");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_EQ(run.output, "");
-  EXPECT_EQ(test::filesIn(dir / "out"), std::vector<std::string>{"00000.png"});
+  EXPECT_EQ(test::filesIn(dir / "out"), (std::vector<std::string>{"00000.png", "movseg-run.json"}));
   const cv::Mat mask = cv::imread(dir / "out/00000.png", cv::IMREAD_UNCHANGED);
   ASSERT_EQ(mask.size(), kSize);
   EXPECT_EQ(cv::countNonZero(mask), 0);

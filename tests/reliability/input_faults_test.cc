@@ -61,16 +61,11 @@ TEST(InputFaults, AVideoWhoseSizeChangesRestartsTheSegmenterOnEachPart) {
   for (size_t i = 0; i < lines.size(); ++i) EXPECT_EQ(lines[i].at("reset").get<bool>(), i == 8) << i;
   EXPECT_EQ(cv::imread(dir / "out/00007.png", cv::IMREAD_UNCHANGED).size(), cv::Size(320, 240));
   EXPECT_EQ(cv::imread(dir / "out/00008.png", cv::IMREAD_UNCHANGED).size(), cv::Size(256, 144));
-  // Test pattern in, no camera motion: a scrambled part would light the masks up.
-  for (int i = 9; i < 16; ++i) {
-    char name[16];
-    std::snprintf(name, sizeof name, "%05d.png", i);
-    EXPECT_LT(test::foregroundShare(cv::imread(dir / "out/" + name, cv::IMREAD_GRAYSCALE)), 0.2) << name;
-  }
+  // That the second part is not scrambled: video_decoder_test.cc compares it pixel for pixel.
 }
 
 std::string damaged(const test::TempDir& dir) {
-  const std::string path = h264(dir, "d.mkv", "320x240", 40);
+  const std::string path = h264(dir, "d.mp4", "320x240", 40);
   std::fstream file(path, std::ios::in | std::ios::out | std::ios::binary);
   file.seekp(static_cast<std::streamoff>(fs::file_size(path) * 4 / 10));
   std::mt19937 random(7);
@@ -196,7 +191,7 @@ TEST(InputFaults, SpecialFilesAreNamedForWhatTheyAre) {
   // A FIFO is a stream like any other.
   ASSERT_EQ(mkfifo((dir / "fifo").c_str(), 0600), 0);
   const std::string video = h264(dir, "v.mkv", "160x120", 6);
-  std::thread writer([&] { test::runShell("cat " + video + " > " + dir / "fifo"); });
+  std::thread writer([&] { test::runShell("sh -c 'cat " + video + " > " + dir / "fifo" + "'"); });
   const test::CommandResult r = test::runCli("segment " + dir / "fifo" + " -o " + dir / "out" + " -q");
   writer.join();
   EXPECT_EQ(r.exit_code, 0) << r.output;

@@ -71,7 +71,7 @@ TEST_P(Interrupt, MidwayLeavesCompleteFilesAndExits130) {
 
   int masks = 0;
   for (const std::string& name : test::filesIn(out)) {
-    if (name == "stats.jsonl") continue;
+    if (name == "stats.jsonl" || name == "movseg-run.json") continue;
     ASSERT_EQ(fs::path(name).extension(), ".png") << name;  // no *.part left behind
     const cv::Mat mask = cv::imread(out + "/" + name, cv::IMREAD_UNCHANGED);
     ASSERT_FALSE(mask.empty()) << name;
@@ -90,6 +90,9 @@ TEST_P(Interrupt, MidwayLeavesCompleteFilesAndExits130) {
     ++frame;
   }
   EXPECT_EQ(frame, masks);
+  const nlohmann::json manifest = nlohmann::json::parse(textOf(out + "/movseg-run.json"));
+  EXPECT_EQ(manifest.at("frames_done").get<int>(), masks);
+  EXPECT_FALSE(manifest.at("finished").get<bool>());
 }
 
 std::string signalName(const ::testing::TestParamInfo<int>& signal) {

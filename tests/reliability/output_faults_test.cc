@@ -110,7 +110,7 @@ TEST_F(OutputFaults, UnknownOverlayExtensionIsRefused) {
 }
 
 TEST_F(OutputFaults, FeatureDotsCanBeHidden) {
-  for (const std::string& run : {"dots", "plain"}) {
+  for (const std::string run : {"dots", "plain"}) {
     const std::string hide = run == "plain" ? " --no-feature-dots" : "";
     ASSERT_EQ(test::runCli("segment " + frames() + " -o " + dir_ / run + " --overlay -q" + hide).exit_code, 0);
   }

@@ -1,0 +1,79 @@
+// The per-frame work limit: the defaults are never touched; the costliest valid parameters are
+// lowered into every budget and a frame then takes seconds, not minutes.
+#include "core/work_limit.h"
+
+#include <chrono>
+
+#include <gtest/gtest.h>
+
+#include "movseg/segmenter.h"
+#include "reliability/reliability_fixture.h"
+
+namespace movseg {
+namespace {
+
+// Every parameter at the end of its range that costs the most: native working scales, the
+// densest features, the widest windows, the most hypotheses and rounds, the whole-image cut.
+Params costliest() {
+  Params p;
+  p.alignment_width = 0;
+  p.segmentation_width = 0;
+  p.max_corners = 100000;
+  p.edge_cell = 2;
+  p.max_tracked_features = 100000;
+  p.lk_window = 101;
+  p.lk_levels = 8;
+  p.zncc_window = 101;
+  p.ransac_iterations = 10000;
+  p.ransac_grid = 16;
+  p.max_outer_iterations = 100;
+  p.gmm_clusters = 256;
+  p.difference_blur = 20;
+  p.cut_band = 0;
+  p.cut_weight = 1000;
+  p.geodesic_gamma = 100000;
+  return p;
+}
+
+TEST(WorkLimit, LeavesTheDefaultsAloneAtAnySize) {
+  for (const cv::Size size : {cv::Size(1, 1), cv::Size(320, 240), cv::Size(854, 480),
+                              cv::Size(3840, 2160), cv::Size(16384, 16384), cv::Size(100000, 10)}) {
+    EXPECT_FALSE(withinWorkLimit(Params(), size).lowered) << size;
+  }
+}
+
+TEST(WorkLimit, LowersTheCostliestParametersIntoEveryBudget) {
+  const cv::Size size(3840, 2160);
+  const WorkLimit limit = withinWorkLimit(costliest(), size);
+  ASSERT_TRUE(limit.lowered);
+  const Params& p = limit.params;
+  EXPECT_NO_THROW(p.check());
+  const double align_pixels = 3840.0 * 2160;
+  EXPECT_LE(p.max_corners + align_pixels / (p.edge_cell * p.edge_cell), 50000);
+  const double per_track = 101.0 * 101 * 9 + 101.0 * 101;
+  EXPECT_LE(p.max_tracked_features * per_track, 2e7);
+  EXPECT_LE(static_cast<double>(p.ransac_iterations) * 100 * p.max_tracked_features, 1e7);
+  const cv::Size seg(p.segmentation_width, p.segmentation_width * 2160 / 3840);
+  EXPECT_LE(seg.area(), 4e6 * 1.001);
+  EXPECT_LE(8.0 * p.cut_band * (seg.width + seg.height), 250000);
+  EXPECT_LE(p.difference_blur * seg.area(), 2e7 * 1.001);
+  // What is not a cost stays as asked.
+  EXPECT_EQ(p.gmm_clusters, 256);
+  EXPECT_EQ(p.cut_weight, 1000);
+}
+
+// Unlimited, this pair took 58 s (1.2 GB) for its second frame on the reference machine.
+TEST(WorkLimit, TheCostliestParametersTakeSecondsPerFrame) {
+  const std::vector<cv::Mat> frames = test::synthFrames(2, 3, {960, 540});
+  Segmenter segmenter(costliest());
+  segmenter.process(frames[0]);
+  const auto start = std::chrono::steady_clock::now();
+  const Result r = segmenter.process(frames[1]);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_TRUE(r.diagnostics.work_limited);
+  test::expectValidResult(r, frames[1].size());
+  EXPECT_LT(seconds, 30);
+}
+
+}  // namespace
+}  // namespace movseg
