@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cctype>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -10,7 +11,6 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
-#include <regex>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
@@ -72,9 +72,11 @@ std::string frameName(int index) {
   return name;
 }
 
+// A name frameName() gives: five or more digits, ".png".
 bool isFrameName(const fs::path& path) {
-  static const std::regex kFrameName("[0-9]{5,}\\.png");
-  return std::regex_match(path.filename().string(), kFrameName);
+  const std::string stem = path.stem().string();
+  return path.extension() == ".png" && stem.size() >= 5 &&
+         std::all_of(stem.begin(), stem.end(), [](unsigned char c) { return std::isdigit(c); });
 }
 
 std::string lowercase(std::string text) {

@@ -1,6 +1,8 @@
 #include "test_support.h"
 
 #include <fcntl.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -75,6 +77,40 @@ pid_t startCli(const std::vector<std::string>& args, const std::string& log) {
   const int error = posix_spawn(&pid, MOVSEG_CLI_PATH, &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   return error == 0 ? pid : -1;
+}
+
+LocalServer::LocalServer(std::string video) : video_(std::move(video)) {
+  fd_ = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  bind(fd_, reinterpret_cast<sockaddr*>(&address), sizeof address);
+  socklen_t length = sizeof address;
+  getsockname(fd_, reinterpret_cast<sockaddr*>(&address), &length);
+  port_ = ntohs(address.sin_port);
+  listen(fd_, 4);
+  if (!video_.empty()) server_ = std::thread([this] { serveOnce(); });
+}
+
+LocalServer::~LocalServer() {
+  shutdown(fd_, SHUT_RDWR);
+  close(fd_);
+  if (server_.joinable()) server_.join();
+}
+
+std::string LocalServer::url() const {
+  return "http://127.0.0.1:" + std::to_string(port_) + "/video";
+}
+
+void LocalServer::serveOnce() {
+  const int client = accept(fd_, nullptr, nullptr);
+  if (client < 0) return;
+  const std::string head = "HTTP/1.0 200 OK\r\nContent-Type: application/octet-stream\r\n\r\n";
+  send(client, head.data(), head.size(), MSG_NOSIGNAL);
+  send(client, video_.data(), video_.size(), MSG_NOSIGNAL);
+  char ignored[256];
+  while (recv(client, ignored, sizeof ignored, 0) > 0) {}  // until the reader hangs up
+  close(client);
 }
 
 int runShell(const std::string& command) {

@@ -4,6 +4,7 @@
 #include <sys/types.h>
 
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace movseg::test {
@@ -39,6 +40,26 @@ void expectOneLineError(const CommandResult& result, const std::string& needle, 
 
 // `movseg ARGS...` started in the background, its stdout and stderr going to `log`; its pid.
 pid_t startCli(const std::vector<std::string>& args, const std::string& log);
+
+// A TCP server on 127.0.0.1 for stream tests. Without `video` it accepts connections and never
+// answers; with it, it answers the first request with an HTTP header and those bytes, then
+// stays silent until the client hangs up (a stalled stream).
+class LocalServer {
+ public:
+  explicit LocalServer(std::string video = "");
+  ~LocalServer();
+  LocalServer(const LocalServer&) = delete;
+  LocalServer& operator=(const LocalServer&) = delete;
+  std::string url() const;
+
+ private:
+  void serveOnce();
+
+  int fd_ = -1;
+  int port_ = 0;
+  std::string video_;
+  std::thread server_;
+};
 
 // Runs a shell command, its output discarded; its exit code.
 int runShell(const std::string& command);

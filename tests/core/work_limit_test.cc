@@ -37,7 +37,8 @@ Params costliest() {
 
 TEST(WorkLimit, LeavesTheDefaultsAloneAtAnySize) {
   for (const cv::Size size : {cv::Size(1, 1), cv::Size(320, 240), cv::Size(854, 480),
-                              cv::Size(3840, 2160), cv::Size(16384, 16384), cv::Size(100000, 10)}) {
+                              cv::Size(3840, 2160), cv::Size(16384, 16384), cv::Size(100000, 10),
+                              cv::Size(1080, 1920), cv::Size(320, 1200)}) {
     EXPECT_FALSE(withinWorkLimit(Params(), size).lowered) << size;
   }
 }
@@ -48,21 +49,23 @@ TEST(WorkLimit, LowersTheCostliestParametersIntoEveryBudget) {
   ASSERT_TRUE(limit.lowered);
   const Params& p = limit.params;
   EXPECT_NO_THROW(p.check());
-  const double align_pixels = 3840.0 * 2160;
-  EXPECT_LE(p.max_corners + align_pixels / (p.edge_cell * p.edge_cell), 50000);
+  const double align_pixels = p.alignment_width * (p.alignment_width * 2160.0 / 3840);
+  EXPECT_LE(align_pixels, 2e6 * 1.001);
+  EXPECT_LE(p.max_corners + align_pixels / (p.edge_cell * p.edge_cell), 30000);
   const double per_track = 101.0 * 101 * 9 + 101.0 * 101;
   EXPECT_LE(p.max_tracked_features * per_track, 2e7);
   EXPECT_LE(static_cast<double>(p.ransac_iterations) * 100 * p.max_tracked_features, 1e7);
   const cv::Size seg(p.segmentation_width, p.segmentation_width * 2160 / 3840);
-  EXPECT_LE(seg.area(), 4e6 * 1.001);
-  EXPECT_LE(8.0 * p.cut_band * (seg.width + seg.height), 250000);
+  EXPECT_LE(seg.area(), 1e6 * 1.001);
+  EXPECT_LE(32.0 * p.cut_band * (seg.width + seg.height), 400000);
   EXPECT_LE(p.difference_blur * seg.area(), 2e7 * 1.001);
   // What is not a cost stays as asked.
   EXPECT_EQ(p.gmm_clusters, 256);
   EXPECT_EQ(p.cut_weight, 1000);
 }
 
-// Unlimited, this pair took 58 s (1.2 GB) for its second frame on the reference machine.
+// Unlimited, this pair took 58 s (1.2 GB) for its second frame on the reference machine;
+// limited, a few seconds.
 TEST(WorkLimit, TheCostliestParametersTakeSecondsPerFrame) {
   const std::vector<cv::Mat> frames = test::synthFrames(2, 3, {960, 540});
   Segmenter segmenter(costliest());
@@ -72,7 +75,9 @@ TEST(WorkLimit, TheCostliestParametersTakeSecondsPerFrame) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_TRUE(r.diagnostics.work_limited);
   test::expectValidResult(r, frames[1].size());
+#ifndef __SANITIZE_ADDRESS__  // sanitized code runs several times slower
   EXPECT_LT(seconds, 30);
+#endif
 }
 
 }  // namespace

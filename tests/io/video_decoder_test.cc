@@ -2,10 +2,6 @@
 // a deadline on every blocking call.
 #include "io/video_decoder.h"
 
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <unistd.h>
-
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -105,37 +101,15 @@ TEST(VideoDecoder, DamageIsCountedAsDecodeErrors) {
   EXPECT_FALSE(decoder.lastError().empty());
 }
 
-// A local server that accepts connections and never answers.
-class SilentServer {
- public:
-  SilentServer() {
-    fd_ = socket(AF_INET, SOCK_STREAM, 0);
-    sockaddr_in address{};
-    address.sin_family = AF_INET;
-    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    bind(fd_, reinterpret_cast<sockaddr*>(&address), sizeof address);
-    socklen_t length = sizeof address;
-    getsockname(fd_, reinterpret_cast<sockaddr*>(&address), &length);
-    port_ = ntohs(address.sin_port);
-    listen(fd_, 4);
-  }
-  ~SilentServer() { close(fd_); }
-  std::string url() const { return "http://127.0.0.1:" + std::to_string(port_) + "/video.mp4"; }
-
- private:
-  int fd_ = -1;
-  int port_ = 0;
-};
-
 TEST(VideoDecoder, OpeningASilentServerGivesUpAtTheTimeout) {
-  const SilentServer server;
+  const test::LocalServer server;
   const auto start = std::chrono::steady_clock::now();
   EXPECT_THROW(VideoDecoder(server.url(), {milliseconds(500), nullptr}), std::runtime_error);
   EXPECT_LT(std::chrono::steady_clock::now() - start, milliseconds(3000));
 }
 
 TEST(VideoDecoder, AStopFlagEndsAnOpenWithinASecond) {
-  const SilentServer server;
+  const test::LocalServer server;
   std::atomic<bool> stop{false};
   std::thread stopper([&stop] {
     std::this_thread::sleep_for(milliseconds(300));
