@@ -25,8 +25,8 @@ void addSegmentCommand(CLI::App& app) {
                   "OUTDIR/overlay/")
       ->expected(0, 1)
       ->default_str("");
-  cmd->add_flag("!--no-feature-dots", options->feature_dots,
-                "The overlay shows the mask only, not the feature points");
+  cmd->add_flag_callback("--no-feature-dots", [options] { options->feature_dots = false; },
+                         "The overlay shows the mask only, not the feature points");
   cmd->add_flag("--show", options->show,
                 "Show the overlay in a live window (needs a display; q or Esc stops)");
   cmd->add_flag("--debug", options->debug, "Write each stage's pictures to OUTDIR/debug/<stage>/");
@@ -38,7 +38,8 @@ void addSegmentCommand(CLI::App& app) {
   auto timeout = std::make_shared<double>(10);
   cmd->add_option("--timeout", *timeout,
                   "Seconds a stream may take to open or to give the next frame (0 = no limit)")
-      ->check(CLI::Range(0.0, 86400.0))
+      ->check(CLI::Range(0.0, 86400.0).description(""))
+      ->type_name("SECONDS")
       ->capture_default_str();
   cmd->add_flag("--stop-on-decode-error", options->stop_on_decode_error,
                 "Stop at the first decode error (else they are counted, and reported at the end)");

@@ -10,7 +10,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
-#include <optional>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
@@ -295,12 +294,15 @@ void writeDebugPictures(const std::string& folder, int index, const Result& resu
 
 // Everything a run writes. finish() completes the files; when the run fails midway the
 // destructor completes what it can instead, so that what was written stays under final names.
+// The manifest is written last, once every output could be opened: a run that could not start
+// leaves no record that would refuse the next one.
 class RunOutputs {
  public:
   RunOutputs(const SegmentOptions& options, double fps)
-      : options_(options), manifest_(options), overlay_(options.overlay, fps) {
-    if (!options.stats_file.empty()) stats_.emplace(options.stats_file);
-  }
+      : options_(options),
+        stats_(options.stats_file.empty() ? nullptr : std::make_unique<LineFile>(options.stats_file)),
+        overlay_(options.overlay, fps),
+        manifest_(options) {}
   ~RunOutputs() {
     if (finished_) return;
     try {
@@ -338,9 +340,9 @@ class RunOutputs {
   }
 
   const SegmentOptions& options_;
-  Manifest manifest_;
-  std::optional<LineFile> stats_;
+  std::unique_ptr<LineFile> stats_;
   OverlayWriter overlay_;
+  Manifest manifest_;
   SourceReport source_;
   int frames_ = 0;
   bool finished_ = false;

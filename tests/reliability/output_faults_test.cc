@@ -162,6 +162,13 @@ TEST_F(OutputFaults, ARunIntoAUsedFolderIsRefusedUnlessOverwritten) {
   test::expectOneLineError(test::runCli(run), "numbered masks", kUsage);
 }
 
+TEST_F(OutputFaults, ARunThatCouldNotStartDoesNotClaimItsFolder) {
+  const std::string run = "segment " + frames() + " -o " + dir_ / "out" + " -q";
+  test::expectOneLineError(test::runCli(run + " --stats " + dir_ / "no/such/folder/s.jsonl"),
+                           "s.jsonl", kRunFailed);
+  EXPECT_EQ(test::runCli(run).exit_code, 0);
+}
+
 TEST_F(OutputFaults, ExitCodesSayUsageOrRunFailure) {
   EXPECT_EQ(test::runCli("segment " + frames() + " -o " + dir_ / "out" + " --frobnicate").exit_code, kUsage);
   EXPECT_EQ(test::runCli("segment " + frames() + " -o " + dir_ / "out" + " --max-frames 0").exit_code, kUsage);
