@@ -93,9 +93,12 @@ bool isVideoPath(const std::string& path) {
 
 // Whether `path` is `base` or lies inside it, once both are made absolute and normal.
 bool isSameOrInside(const std::string& path, const std::string& base) {
-  std::error_code error;
-  const fs::path p = fs::weakly_canonical(fs::absolute(path), error);
-  const fs::path b = fs::weakly_canonical(fs::absolute(base), error);
+  const auto normal = [](const std::string& name) {
+    std::error_code error;
+    const fs::path full = fs::weakly_canonical(fs::absolute(name), error);
+    return full.filename().empty() ? full.parent_path() : full;  // "frames/" is "frames"
+  };
+  const fs::path p = normal(path), b = normal(base);
   const auto [end, _] = std::mismatch(b.begin(), b.end(), p.begin(), p.end());
   return end == b.end();
 }
@@ -123,7 +126,7 @@ void checkOutputPaths(const SegmentOptions& options) {
 
 // ---- the run manifest -------------------------------------------------------------------------
 
-// What makes two runs the same: the input and every setting that changes a mask.
+// The manifest's record of a run: its input and every setting that changes a mask.
 nlohmann::json runIdentity(const SegmentOptions& options) {
   nlohmann::json settings;
   for (const FieldInfo& field : paramFields()) {

@@ -127,6 +127,7 @@ TEST_F(OutputFaults, OutputsInsideTheInputAreRefused) {
   const std::pair<std::string, std::string> cases[] = {
       {"segment " + frames() + " -o " + frames(), "-o"},
       {"segment " + frames() + " -o " + frames() + "/masks", "-o"},
+      {"segment " + frames() + "/ -o " + frames() + "/./masks/", "-o"},
       {"segment " + (*clip_ / "clip") + " -o " + frames(), "-o"},  // a sequence folder reads frames/
       {"segment " + video + " -o " + dir_ / "out" + " --overlay " + video, "--overlay"},
       {"segment " + video + " -o " + dir_ / "out" + " --stats " + video, "--stats"},
