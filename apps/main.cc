@@ -1,4 +1,6 @@
 // build/movseg: segment moving objects, make synthetic test video, evaluate and benchmark.
+#include <malloc.h>
+
 #include <cstdlib>
 #include <exception>
 #include <iostream>
@@ -15,7 +17,18 @@ void quietLibraries() {
   cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_ERROR);
 }
 
+// Per-frame buffers of a few hundred kilobytes would otherwise be mapped from the kernel and
+// given back on every frame (glibc serves large blocks with mmap and trims the heap's top), and
+// faulting their pages in again cost a third of a run's time on a VM (docs/design.md). Kept in
+// the heap, they are reused. The library leaves the process's allocator alone; programs that
+// call it can do the same, or set GLIBC_TUNABLES.
+void keepLargeBlocksInTheHeap() {
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest
+  mallopt(M_TRIM_THRESHOLD, 512 << 20);
+}
+
 int main(int argc, char** argv) {
+  keepLargeBlocksInTheHeap();
   quietLibraries();
   cv::setNumThreads(1);  // per-frame work is small; one core per stream is the design point
   CLI::App app{"movseg: moving object segmentation for freely moving cameras"};
