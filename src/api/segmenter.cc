@@ -1,19 +1,14 @@
-// movseg::Segmenter: the one frame loop. It normalises each frame, restarts the stream when the
-// frame size changes, runs the pipeline of Params::method, scales the mask to the frame and
-// times the call.
+// movseg::Segmenter: the frame loop, one frame at a time.
 #include "movseg/segmenter.h"
 
-#include "core/frame.h"
-#include "core/timing.h"
-#include "pipelines/pipeline.h"
+#include "api/frame_loop.h"
 
 namespace movseg {
 
 struct Segmenter::Impl {
-  explicit Impl(const Params& p) : params(p), pipeline(makePipeline(p)) {}
-  Params params;
-  std::unique_ptr<Pipeline> pipeline;
-  cv::Size size;  // of the last frame; empty before the first frame of a stream
+  explicit Impl(const Params& params) : loop(params), job(loop.newJob()) {}
+  FrameLoop loop;
+  std::unique_ptr<FrameLoop::Job> job;
 };
 
 Segmenter::Segmenter(const Params& params) {
@@ -25,39 +20,18 @@ Segmenter::Segmenter(Segmenter&&) noexcept = default;
 Segmenter& Segmenter::operator=(Segmenter&&) noexcept = default;
 
 Result Segmenter::process(const cv::Mat& frame) {
-  const Clock::time_point start = Clock::now();
-  // The pipeline keeps the frame for the next pair, so it must not share the caller's buffer:
-  // a video loop (cap >> frame) refills that buffer with the next frame.
-  cv::Mat bgr = toBgr8(frame);
-  if (bgr.data == frame.data) bgr = bgr.clone();
-  Result result;
-  Diagnostics& diag = result.diagnostics;
-  if (!impl_->size.empty() && impl_->size != bgr.size()) {
-    impl_->pipeline->reset();
-    impl_->size = cv::Size();
-    diag.reset = true;
-  }
-  diag.first_frame = impl_->size.empty();
-  impl_->size = bgr.size();
-  const DebugSink debug(impl_->params.debug_images ? &result.debug : nullptr);
-  const cv::Mat mask = impl_->pipeline->process(bgr, debug, &result);
-  // Nothing moves without a previous frame, whatever a pipeline makes of its first one (MOG2
-  // calls everything foreground).
-  result.mask = diag.first_frame ? cv::Mat::zeros(bgr.size(), CV_8U) : upscaledMask(mask, bgr.size());
-  debug.put("mask", [&] { return result.mask; });
-  diag.total_ms = millisecondsSince(start);
-  return result;
+  FrameLoop::Job& job = *impl_->job;
+  impl_->loop.analyse(FrameLoop::ownedBgr(frame), &job);
+  impl_->loop.segment(&job);
+  return std::move(job.result);
 }
 
-void Segmenter::reset() {
-  impl_->pipeline->reset();
-  impl_->size = cv::Size();
-}
+void Segmenter::reset() { impl_->loop.reset(); }
 
 cv::Mat Segmenter::compensatedPreviousFrame() const {
-  return impl_->pipeline->compensatedPreviousFrame();
+  return impl_->loop.pipeline().compensatedPreviousFrame();
 }
 
-const Params& Segmenter::params() const { return impl_->params; }
+const Params& Segmenter::params() const { return impl_->loop.params(); }
 
 }  // namespace movseg
