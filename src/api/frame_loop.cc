@@ -1,6 +1,7 @@
 #include "api/frame_loop.h"
 
-#include "core/frame.h"
+#include <stdexcept>
+
 #include "core/timing.h"
 
 namespace movseg {
@@ -14,8 +15,10 @@ std::unique_ptr<FrameLoop::Job> FrameLoop::newJob() const {
 }
 
 cv::Mat FrameLoop::ownedBgr(const cv::Mat& frame) {
-  cv::Mat bgr = toBgr8(frame);
-  return bgr.data == frame.data ? bgr.clone() : bgr;
+  if (frame.empty()) throw std::invalid_argument("empty frame");
+  cv::Mat bgr = frames_.take(frame.size(), CV_8UC3);
+  toBgr8(frame, &bgr);
+  return bgr;
 }
 
 void FrameLoop::analyse(const cv::Mat& bgr, Job* job) {

@@ -8,6 +8,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "core/frame.h"
 #include "movseg/params.h"
 #include "movseg/segmenter.h"
 #include "pipelines/pipeline.h"
@@ -28,10 +29,10 @@ class FrameLoop {
 
   std::unique_ptr<Job> newJob() const;
 
-  // The frame as the pipeline takes it: 8-bit BGR, never sharing the caller's buffer (the
-  // pipeline keeps frames, and a video loop refills its buffer). Throws std::invalid_argument
-  // for an empty frame or an unsupported type.
-  static cv::Mat ownedBgr(const cv::Mat& frame);
+  // The frame as the pipeline takes it: 8-bit BGR in a buffer of the loop's own (the pipeline
+  // keeps frames, and a video loop refills its buffer). Throws std::invalid_argument for an
+  // empty frame or an unsupported type.
+  cv::Mat ownedBgr(const cv::Mat& frame);
 
   // Phase 1 of `bgr` (from ownedBgr) into `job`.
   void analyse(const cv::Mat& bgr, Job* job);
@@ -49,6 +50,7 @@ class FrameLoop {
   Params params_;
   std::unique_ptr<Pipeline> pipeline_;
   cv::Size size_;  // of the last analysed frame; empty before the first frame of a stream
+  FramePool frames_;
 };
 
 }  // namespace movseg

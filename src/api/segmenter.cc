@@ -21,7 +21,7 @@ Segmenter& Segmenter::operator=(Segmenter&&) noexcept = default;
 
 Result Segmenter::process(const cv::Mat& frame) {
   FrameLoop::Job& job = *impl_->job;
-  impl_->loop.analyse(FrameLoop::ownedBgr(frame), &job);
+  impl_->loop.analyse(impl_->loop.ownedBgr(frame), &job);
   impl_->loop.segment(&job);
   return std::move(job.result);
 }

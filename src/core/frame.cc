@@ -9,11 +9,13 @@
 
 namespace movseg {
 
-cv::Mat toBgr8(const cv::Mat& frame) {
-  if (frame.empty()) throw std::invalid_argument("empty frame");
+namespace {
+
+// 8-bit, any channel count: the depth conversion of toBgr8.
+cv::Mat eightBit(const cv::Mat& frame) {
   cv::Mat eight;
   switch (frame.depth()) {
-    case CV_8U: eight = frame; break;
+    case CV_8U: return frame;
     case CV_8S: frame.convertTo(eight, CV_8U, 1.0, 128.0); break;
     case CV_16U: frame.convertTo(eight, CV_8U, 1.0 / 256.0); break;
     case CV_16S: frame.convertTo(eight, CV_8U, 1.0 / 256.0, 128.0); break;
@@ -28,16 +30,42 @@ cv::Mat toBgr8(const cv::Mat& frame) {
     default:
       throw std::invalid_argument("unsupported pixel depth");
   }
-  cv::Mat bgr;
-  switch (eight.channels()) {
-    case 1: cv::cvtColor(eight, bgr, cv::COLOR_GRAY2BGR); break;
-    case 3: bgr = eight; break;
-    case 4: cv::cvtColor(eight, bgr, cv::COLOR_BGRA2BGR); break;
-    default:
-      throw std::invalid_argument("unsupported channel count " + std::to_string(eight.channels()) +
-                                  " (expected 1, 3 or 4)");
+  return eight;
+}
+
+}  // namespace
+
+void toBgr8(const cv::Mat& frame, cv::Mat* bgr) {
+  if (frame.empty()) throw std::invalid_argument("empty frame");
+  if (frame.channels() != 1 && frame.channels() != 3 && frame.channels() != 4) {
+    throw std::invalid_argument("unsupported channel count " + std::to_string(frame.channels()) +
+                                " (expected 1, 3 or 4)");
   }
+  const cv::Mat eight = eightBit(frame);
+  switch (eight.channels()) {
+    case 1: cv::cvtColor(eight, *bgr, cv::COLOR_GRAY2BGR); break;
+    case 3: eight.copyTo(*bgr); break;
+    default: cv::cvtColor(eight, *bgr, cv::COLOR_BGRA2BGR); break;
+  }
+}
+
+cv::Mat toBgr8(const cv::Mat& frame) {
+  if (frame.type() == CV_8UC3) return frame;
+  cv::Mat bgr;
+  toBgr8(frame, &bgr);
   return bgr;
+}
+
+cv::Mat FramePool::take(cv::Size size, int type) {
+  for (cv::Mat& buffer : buffers_) {
+    // Read atomically: another thread may be dropping its reference right now.
+    if (buffer.u != nullptr && CV_XADD(&buffer.u->refcount, 0) != 1) continue;
+    buffer.create(size, type);
+    return buffer;
+  }
+  cv::Mat buffer(size, type);
+  if (buffers_.size() < kMaxBuffers) buffers_.push_back(buffer);
+  return buffer;
 }
 
 cv::Mat resizedTo(const cv::Mat& image, cv::Size size) {
