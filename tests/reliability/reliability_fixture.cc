@@ -22,7 +22,9 @@ void expectValidResult(const Result& result, cv::Size size) {
     if (const auto* real = std::get_if<double>(&value)) {
       EXPECT_TRUE(std::isfinite(*real) && *real >= 0) << field.name << " = " << *real;
     }
-    if (const auto* count = std::get_if<int>(&value)) EXPECT_GE(*count, 0) << field.name;
+    if (const auto* count = std::get_if<int>(&value)) {
+      EXPECT_GE(*count, 0) << field.name;
+    }
   }
   for (const Feature& f : result.features) {
     EXPECT_TRUE(std::isfinite(f.position.x) && std::isfinite(f.position.y));
