@@ -4,6 +4,8 @@
 #include <regex>
 #include <stdexcept>
 #include <string>
+#include <tuple>
+#include <utility>
 
 #include "commands.h"
 #include "synth/synth.h"
@@ -15,6 +17,7 @@ struct SynthCommandOptions {
   std::string output_dir;
   std::string size = "320x240";
   std::string camera = "mix";
+  std::string object_speed = "1-6";
   SynthOptions synth;
 };
 
@@ -25,6 +28,18 @@ cv::Size parseSize(const std::string& text) {
     throw std::invalid_argument("--size must be WIDTHxHEIGHT, e.g. 320x240 (got '" + text + "')");
   }
   return {std::stoi(match[1]), std::stoi(match[2])};
+}
+
+// "MIN-MAX" or a single speed "S" (= "S-S"), px/frame; the generator checks the range itself.
+std::pair<double, double> parseSpeedRange(const std::string& text) {
+  const std::regex pattern(R"((\d+(?:\.\d*)?)(?:-(\d+(?:\.\d*)?))?)");
+  std::smatch match;
+  if (!std::regex_match(text, match, pattern)) {
+    throw std::invalid_argument("--object-speed must be MIN-MAX or SPEED in px/frame, e.g. 1-3.5 "
+                                "(got '" + text + "')");
+  }
+  const double lo = std::stod(match[1]);
+  return {lo, match[2].matched ? std::stod(match[2]) : lo};
 }
 
 // CLI11 reads "-1" into an unsigned option as 2^64 - 1; a negative seed is a typo, not a seed.
@@ -69,9 +84,16 @@ void addSynthCommand(CLI::App& app) {
   cmd->add_option("--illumination", synth.illumination_drift,
                   "Slow global gain change: the gain stays within 1 +- this")
       ->capture_default_str();
+  cmd->add_option("--object-speed", options->object_speed,
+                  "Object speed range MIN-MAX, px/frame at 320x240 (scaled with the width)")
+      ->capture_default_str();
+  cmd->add_flag("--camouflage", synth.camouflage,
+                "Texture the objects like the background: only their motion gives them away");
   cmd->callback([options] {
     options->synth.size = parseSize(options->size);
     options->synth.camera = parseSynthCamera(options->camera);
+    std::tie(options->synth.object_speed_min, options->synth.object_speed_max) =
+        parseSpeedRange(options->object_speed);
     writeSynthSequence(options->output_dir, options->synth);
     std::cout << "synth: " << describe(options->synth, options->output_dir) << "\n";
   });

@@ -87,7 +87,8 @@ std::vector<cv::Point2d> makeOutline(double area, cv::RNG& rng) {
 // The centre bounces inside the frame grown by a random margin: a negative margin keeps the
 // object nearly whole in view, a margin above its radius lets it leave entirely and come back.
 // It starts anywhere in that box, so it may enter from outside.
-void simulateMotion(int frames, cv::Size frame_size, cv::RNG& rng, SynthObject* object) {
+void simulateMotion(const SynthOptions& options, cv::RNG& rng, SynthObject* object) {
+  const cv::Size frame_size = options.size;
   const double scale = frame_size.width / 320.0;
   const double radius = polygonRadius(object->outline);
   const double margin = std::max(radius * rng.uniform(-0.8, 1.3),
@@ -97,12 +98,12 @@ void simulateMotion(int frames, cv::Size frame_size, cv::RNG& rng, SynthObject* 
   cv::Point2d centre;
   centre.x = rng.uniform(lo.x, hi.x);
   centre.y = rng.uniform(lo.y, hi.y);
-  const double speed = scale * rng.uniform(1.0, 6.0);
+  const double speed = scale * rng.uniform(options.object_speed_min, options.object_speed_max);
   double heading = rng.uniform(0.0, 2 * CV_PI);
   double angle = rng.uniform(0.0, 2 * CV_PI);
   const double spin = rng.uniform(-0.02, 0.02);
   double turn = 0;
-  for (int t = 0; t < frames; ++t) {
+  for (int t = 0; t < options.frames; ++t) {
     object->centre.push_back(centre);
     object->angle.push_back(angle);
     turn = std::clamp(turn + rng.gaussian(0.006), -0.04, 0.04);
@@ -118,17 +119,21 @@ void simulateMotion(int frames, cv::Size frame_size, cv::RNG& rng, SynthObject* 
 
 }  // namespace
 
-std::vector<SynthObject> makeObjects(int count, int frames, cv::Size frame_size,
-                                     const Palette& palette, cv::RNG& rng) {
-  const double scale = frame_size.width / 320.0;
-  const double max_fraction = 0.25 / std::sqrt(count);
-  std::vector<SynthObject> objects(count);
+std::vector<SynthObject> makeObjects(const SynthOptions& options, const Palette& palette,
+                                     cv::RNG& rng) {
+  const double scale = options.size.width / 320.0;
+  const double max_fraction = 0.25 / std::sqrt(options.objects);
+  std::vector<SynthObject> objects(options.objects);
   for (SynthObject& object : objects) {
-    object.outline = makeOutline(rng.uniform(0.05, max_fraction) * frame_size.area(), rng);
+    object.outline = makeOutline(rng.uniform(0.05, max_fraction) * options.size.area(), rng);
     const int side = 2 * cvCeil(polygonRadius(object.outline)) + 5;
-    const cv::Vec3d colour = pickObjectColour(palette, rng);
-    object.texture = makeObjectTexture(side, colour, scale, rng);
-    simulateMotion(frames, frame_size, rng, &object);
+    if (options.camouflage) {
+      object.texture = makeBackgroundTexture(cv::Size(side, side), palette, scale, rng);
+    } else {
+      const cv::Vec3d colour = pickObjectColour(palette, rng);
+      object.texture = makeObjectTexture(side, colour, scale, rng);
+    }
+    simulateMotion(options, rng, &object);
   }
   return objects;
 }

@@ -22,12 +22,19 @@ constexpr int kMaxFrames = 100000;  // file names have five digits
 constexpr int kMinSide = 16;
 constexpr int kMaxSide =
     2048;  // the canvas is a few times the frame: ~400 MB to build at 2048x2048
+constexpr int kMaxObjectSpeed = 30;  // px/frame at 320x240: a tenth of the frame width
 
 const std::pair<const char*, SynthCamera> kCameraNames[] = {
     {"pan", SynthCamera::kPan},       {"zoom", SynthCamera::kZoom},
     {"rotate", SynthCamera::kRotate}, {"shake", SynthCamera::kShake},
     {"static", SynthCamera::kStatic}, {"mix", SynthCamera::kMix},
 };
+
+std::string shortNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", value);
+  return text;
+}
 
 void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("invalid synth option: " + what);
@@ -47,6 +54,11 @@ void checkOptions(const SynthOptions& o) {
   require(o.noise_sigma >= 0 && o.noise_sigma <= 64, "noise_sigma must be in [0, 64]");
   require(o.illumination_drift >= 0 && o.illumination_drift <= 0.5,
           "illumination_drift must be in [0, 0.5]");
+  require(o.object_speed_min > 0 && o.object_speed_min <= o.object_speed_max &&
+              o.object_speed_max <= kMaxObjectSpeed,
+          "object speeds must satisfy 0 < min <= max <= " + std::to_string(kMaxObjectSpeed) +
+              " px/frame (got " + shortNumber(o.object_speed_min) + "-" +
+              shortNumber(o.object_speed_max) + ")");
 }
 
 // A static camera gives the identity exactly, not a rounding of H * H^-1.
@@ -118,7 +130,7 @@ SynthSequence::SynthSequence(const SynthOptions& options) {
     state->canvas = makeBackgroundTexture(path.canvas, palette, scale, background_rng);
   }
   cv::RNG object_rng = synthRng(options.seed, SynthStream::kObjects);
-  state->objects = makeObjects(options.objects, options.frames, options.size, palette, object_rng);
+  state->objects = makeObjects(options, palette, object_rng);
   // A slow drift: at least 150 frames per cycle.
   cv::RNG light_rng = synthRng(options.seed, SynthStream::kIllumination);
   state->gain_change.amplitude = options.illumination_drift;

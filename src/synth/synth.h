@@ -28,6 +28,14 @@ struct SynthOptions {
   // false: the objects are drawn on black. Object textures never contain black, so the ground
   // truth can then be checked pixel by pixel.
   bool background = true;
+  // Object speeds in pixels per frame at 320x240 (scaled with the frame width): each object
+  // keeps one speed drawn uniformly from [min, max].
+  double object_speed_min = 1;
+  double object_speed_max = 6;
+  // true: object textures come from the background's texture process and palette, so that an
+  // object differs from the background only by its motion (and its outline, where the textures
+  // happen to differ). false: each object has its own colour, far from the palette's.
+  bool camouflage = false;
 };
 
 struct SynthFrame {
@@ -40,7 +48,8 @@ class SynthSequence {
  public:
   // Throws std::invalid_argument naming the first option out of range: frames not in
   // [1, 100000], size not within 16x16..2048x2048, objects not in [1, 3], noise_sigma not in
-  // [0, 64], illumination_drift not in [0, 0.5].
+  // [0, 64], illumination_drift not in [0, 0.5], not 0 < object_speed_min <= object_speed_max
+  // <= 30.
   explicit SynthSequence(const SynthOptions& options);
 
   int size() const;

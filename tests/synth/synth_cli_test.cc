@@ -64,8 +64,10 @@ TEST(SynthCli, WritesFramesMasksAndCameraModels) {
 TEST(SynthCli, BadOptionsFailWithOneLine) {
   TempDir dir;
   const std::string out = dir / "clip";
-  for (const std::string bad : {"--size 10x10", "--size abc", "--objects 0", "--objects 4",
-                                "--frames 0", "--camera tilt", "--seed -1"}) {
+  for (const std::string bad :
+       {"--size 10x10", "--size abc", "--objects 0", "--objects 4", "--frames 0", "--camera tilt",
+        "--seed -1", "--object-speed 3-1", "--object-speed 0-2", "--object-speed 40",
+        "--object-speed fast", "--object-speed -1-2", "--noise -1", "--illumination 0.6"}) {
     const auto result = runCli("synth -o " + out + " " + bad);
     EXPECT_NE(result.exit_code, 0) << bad;
     EXPECT_EQ(result.output.rfind("movseg: error: ", 0), 0u) << bad << ": " << result.output;
