@@ -5,12 +5,10 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "synth/raster.h"
+
 namespace movseg {
 namespace {
-
-// Fractional bits of the outline given to fillPoly: objects move in 1/16-pixel steps.
-constexpr int kShift = 4;
-constexpr int kUnit = 1 << kShift;
 
 double polygonArea(const std::vector<cv::Point2d>& polygon) {
   double twice = 0;
@@ -141,22 +139,12 @@ std::vector<SynthObject> makeObjects(const SynthOptions& options, const Palette&
 void drawObject(const SynthObject& object, int t, cv::Mat& frame, cv::Mat& mask) {
   const cv::Point2d centre = object.centre[t];
   const double c = std::cos(object.angle[t]), s = std::sin(object.angle[t]);
-  std::vector<cv::Point> outline;
-  for (const cv::Point2d& p : object.outline) {
-    outline.emplace_back(cvRound((c * p.x - s * p.y + centre.x) * kUnit),
-                         cvRound((s * p.x + c * p.y + centre.y) * kUnit));
-  }
-  const cv::Rect fixed = cv::boundingRect(outline);
-  const double to_pixels = 1.0 / kUnit;
-  const cv::Point top_left(cvFloor(fixed.x * to_pixels) - 1, cvFloor(fixed.y * to_pixels) - 1);
-  const cv::Point bottom_right(cvCeil(fixed.br().x * to_pixels) + 1,
-                               cvCeil(fixed.br().y * to_pixels) + 1);
-  const cv::Rect box = cv::Rect(top_left, bottom_right) & cv::Rect(cv::Point(0, 0), frame.size());
+  std::vector<cv::Point2d> outline;
+  for (const cv::Point2d& p : object.outline)
+    outline.emplace_back(c * p.x - s * p.y + centre.x, s * p.x + c * p.y + centre.y);
+  const Coverage coverage = polygonCoverage(outline, frame.size());
+  const cv::Rect box = coverage.box;
   if (box.empty()) return;
-  for (cv::Point& p : outline) p -= cv::Point(box.x * kUnit, box.y * kUnit);
-  cv::Mat shape = cv::Mat::zeros(box.size(), CV_8U);
-  cv::fillPoly(shape, std::vector<std::vector<cv::Point>>{outline}, cv::Scalar(255), cv::LINE_8,
-               kShift);
   // Texture pixel -> box pixel: turn about the texture's centre, then move onto the object's.
   const double half = (object.texture.cols - 1) / 2.0;
   const cv::Matx23d to_box(c, -s, centre.x - box.x - (c - s) * half, s, c,
@@ -164,8 +152,8 @@ void drawObject(const SynthObject& object, int t, cv::Mat& frame, cv::Mat& mask)
   cv::Mat pixels;
   cv::warpAffine(object.texture, pixels, to_box, box.size(), cv::INTER_LINEAR,
                  cv::BORDER_REPLICATE);
-  pixels.copyTo(frame(box), shape);
-  mask(box).setTo(255, shape);
+  pixels.copyTo(frame(box), coverage.shape);
+  mask(box).setTo(255, coverage.shape);
 }
 
 }  // namespace movseg

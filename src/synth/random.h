@@ -17,6 +17,7 @@ enum class SynthStream : std::uint64_t {
   kObjects,
   kIllumination,
   kNoise,
+  kScene,  // the 3-D scene's layout and textures
 };
 
 // SplitMix64's finaliser: neighbouring seeds give unrelated generator states.
@@ -46,6 +47,25 @@ inline Wave waveWithRate(double max_rate, double min_period, double max_period, 
   wave.period = rng.uniform(min_period, max_period);
   wave.phase = rng.uniform(0.0, 2 * CV_PI);
   wave.amplitude = max_rate * wave.period / (2 * CV_PI);
+  return wave;
+}
+
+// A sweep that starts near its top speed `rate` and, over hundreds of frames, slows down and
+// sweeps back: what the camera sees stays bounded however long the clip.
+inline Wave panWave(double rate, cv::RNG& rng) {
+  Wave wave;
+  wave.period = rng.uniform(200.0, 360.0);
+  wave.phase = rng.uniform(-0.4, 0.4);
+  wave.amplitude = rate * wave.period / (2 * CV_PI);
+  return wave;
+}
+
+// A fast wobble of hand-held shake: periods of 6 to 24 frames.
+inline Wave shakeWave(double amplitude, cv::RNG& rng) {
+  Wave wave;
+  wave.amplitude = amplitude;
+  wave.period = rng.uniform(6.0, 24.0);
+  wave.phase = rng.uniform(0.0, 2 * CV_PI);
   return wave;
 }
 
