@@ -17,6 +17,7 @@ struct SynthCommandOptions {
   std::string output_dir;
   std::string size = "320x240";
   std::string camera = "mix";
+  std::string scene = "plane";
   std::string object_speed = "1-6";
   SynthOptions synth;
 };
@@ -53,8 +54,10 @@ CLI::Validator nonNegative() {
 }
 
 std::string describe(const SynthOptions& o, const std::string& dir) {
+  const std::string scene =
+      o.scene == SynthScene::kPlane ? "" : ", scene " + synthSceneName(o.scene);
   return "wrote " + std::to_string(o.frames) + " frames (" + std::to_string(o.size.width) + "x" +
-         std::to_string(o.size.height) + ", camera " + synthCameraName(o.camera) + ", " +
+         std::to_string(o.size.height) + scene + ", camera " + synthCameraName(o.camera) + ", " +
          std::to_string(o.objects) + (o.objects == 1 ? " object" : " objects") + ", seed " +
          std::to_string(o.seed) + ") to " + dir;
 }
@@ -74,8 +77,13 @@ void addSynthCommand(CLI::App& app) {
   cmd->add_option("--seed", synth.seed, "Seed: equal seeds give identical files")
       ->check(nonNegative())
       ->capture_default_str();
+  cmd->add_option("--scene", options->scene,
+                  "plane (one textured plane) or depth (3-D: ground, near and far posts, "
+                  "walls, boxes)")
+      ->capture_default_str();
   cmd->add_option("--camera", options->camera,
-                  "Camera motion: pan, zoom, rotate, shake, static, mix")
+                  "Camera motion: pan, zoom, rotate, shake, static, mix; depth scene also "
+                  "dolly, forward")
       ->capture_default_str();
   cmd->add_option("--objects", synth.objects, "Independently moving objects (1-3)")
       ->capture_default_str();
@@ -92,6 +100,7 @@ void addSynthCommand(CLI::App& app) {
   cmd->callback([options] {
     options->synth.size = parseSize(options->size);
     options->synth.camera = parseSynthCamera(options->camera);
+    options->synth.scene = parseSynthScene(options->scene);
     std::tie(options->synth.object_speed_min, options->synth.object_speed_max) =
         parseSpeedRange(options->object_speed);
     writeSynthSequence(options->output_dir, options->synth);

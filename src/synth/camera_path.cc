@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "synth/random.h"
 
@@ -34,6 +35,9 @@ MotionMix motionMix(SynthCamera camera) {
       return {0, 0, 0, 0, false};
     case SynthCamera::kMix:
       break;
+    case SynthCamera::kDolly:
+    case SynthCamera::kForward:
+      throw std::logic_error("the plane has no " + synthCameraName(camera) + " camera");
   }
   return {0.5, 0.6, 0.6, 0.6, true};
 }
