@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include <opencv2/imgproc.hpp>
+
 #include "synth/depth_camera.h"
 #include "synth/random.h"
 
@@ -76,6 +78,55 @@ cv::Mat surfaceTexture(double width, double height, double distance, const Depth
   return makeBackgroundTexture(size, palette, scene.frame_size.width / 320.0, rng);
 }
 
+// Blurs each row of the ground's texture (rows run from z = far_z towards the camera) by the
+// ground a pixel sees there: at distance d, from height h, a pixel of the rest view covers about
+// d / f metres across the view and d² / (f h) along it, which far away is many texels. Without
+// this, far ground seen at a grazing angle would alias and shimmer as the camera moves; with it,
+// the ground is about as sharp in the frame as the plane's canvas (0.6–0.7 px of blur) at every
+// distance. Blur levels are at distances a factor √2 apart, and each row blends the two levels
+// around its distance, so the blur grows smoothly.
+void blurWithDistance(cv::Mat& texture, const cv::Size2d& metres, double far_z,
+                      const SynthPinhole& camera) {
+  constexpr double kBlurPerFootprint = 0.6;  // Gaussian sigma, in pixel footprints
+  constexpr double kMinBlur = 0.3;  // texels: below this a level is the texture as it is
+  const double focal = camera.intrinsics(0, 0), height = -camera.centre[1];
+  const double texel_u = metres.width / texture.cols, texel_v = metres.height / texture.rows;
+  // Level k stands for distance 2^(k/2).
+  const auto level = [&](int row) {
+    return 2 * std::log2(std::max(1.0, far_z - (row + 0.5) * texel_v - camera.centre[2]));
+  };
+  cv::Mat source;
+  texture.convertTo(source, CV_32F);
+  cv::Mat result = cv::Mat::zeros(source.size(), source.type());
+  for (int k = cvFloor(level(texture.rows - 1)); k <= cvCeil(level(0)); ++k) {
+    // The rows level k contributes to, with weight 1 - |level(row) - k|: contiguous, since the
+    // distance falls row by row.
+    int first = texture.rows, last = -1;
+    for (int row = 0; row < texture.rows; ++row) {
+      if (std::abs(level(row) - k) < 1) {
+        first = std::min(first, row);
+        last = std::max(last, row);
+      }
+    }
+    if (last < first) continue;
+    const double d = std::pow(2.0, k / 2.0);
+    const double sigma_u = kBlurPerFootprint * d / (focal * texel_u);
+    const double sigma_v = kBlurPerFootprint * d * d / (focal * height * texel_v);
+    // A submatrix is blurred with the rows around it, as a part of the whole texture.
+    const cv::Mat rows = source.rowRange(first, last + 1);
+    cv::Mat blurred = rows;
+    if (sigma_u >= kMinBlur || sigma_v >= kMinBlur) {
+      cv::GaussianBlur(rows, blurred, cv::Size(), std::max(sigma_u, kMinBlur),
+                       std::max(sigma_v, kMinBlur));
+    }
+    for (int row = first; row <= last; ++row) {
+      cv::Mat target = result.row(row);
+      cv::scaleAdd(blurred.row(row - first), 1 - std::abs(level(row) - k), target, target);
+    }
+  }
+  result.convertTo(texture, CV_8U);
+}
+
 // The part of the plane z = far_z and of the ground before it that any frame sees.
 struct SeenExtent {
   double x_low = std::numeric_limits<double>::max();
@@ -114,28 +165,42 @@ SeenExtent seenExtent(const DepthScene& scene, double far_z) {
   return seen;
 }
 
-// The reference view of the sprites is level, at the middle frame's camera position and
-// heading, with the rest focal length. Sprites are 4–8 m beyond it and at least 2.5 m beyond
-// every camera position. Where the ground at a sprite's depth would show above the bottom of the
-// reference view, the sprite is raised until it does not, so that a sprite in view does not sink
-// into the ground (only when the camera moves can the ground hide a sprite's lower edge).
+// The level view at the middle frame's camera position and heading, with the rest focal
+// length: what the sprites' motions are drawn in and the textures are sized for.
+SynthPinhole referenceView(const DepthScene& scene) {
+  const SynthPinhole& middle = scene.views[scene.views.size() / 2];
+  const cv::Vec3d axis = middle.rotation.t() * cv::Vec3d(0, 0, 1);
+  const double heading = std::atan2(axis[0], axis[2]);
+  const double c = std::cos(heading), s = std::sin(heading);
+  const double focal = restFocalLength(scene.frame_size);
+  SynthPinhole view;
+  view.intrinsics = cv::Matx33d(focal, 0, (scene.frame_size.width - 1) / 2.0, 0, focal,
+                                (scene.frame_size.height - 1) / 2.0, 0, 0, 1);
+  view.rotation = cv::Matx33d(c, 0, -s, 0, 1, 0, s, 0, c);
+  view.centre = middle.centre;
+  return view;
+}
+
+// Sprites are 4–8 m (in z) beyond the reference view, on its optical axis, and at least 2.5 m
+// beyond every camera position. Where the ground at a sprite's depth would show above the bottom
+// of the reference view, the sprite is raised until it does not, so that a sprite in view does
+// not sink into the ground (only when the camera moves can the ground hide its lower edge).
 std::vector<Sprite> placeSprites(std::vector<SynthObject> objects, const DepthScene& scene,
                                  const Reach& reach, cv::RNG& rng) {
-  const SynthPinhole& middle = scene.views[scene.views.size() / 2];
-  cv::Vec3d axis = middle.rotation.t() * cv::Vec3d(0, 0, 1);
-  axis[1] = 0;
-  const double nearest = std::max(4.0, reach.high[2] - middle.centre[2] + 2.5);
+  const SynthPinhole reference = referenceView(scene);
+  const cv::Vec3d axis = reference.rotation.t() * cv::Vec3d(0, 0, 1);
+  const cv::Point2d principal_point(reference.intrinsics(0, 2), reference.intrinsics(1, 2));
+  const double nearest = std::max(4.0, reach.high[2] - reference.centre[2] + 2.5);
   std::vector<Sprite> sprites;
   for (SynthObject& object : objects) {
     const double depth = rng.uniform(nearest, nearest + 4);
     Sprite sprite;
     sprite.object = std::move(object);
-    sprite.anchor = middle.centre + axis * (depth / axis[2]);
-    sprite.metres_per_pixel = depth / restFocalLength(scene.frame_size);
-    sprite.centre = cv::Point2d((scene.frame_size.width - 1) / 2.0,
-                                (scene.frame_size.height - 1) / 2.0);
+    sprite.anchor = reference.centre + axis * (depth / axis[2]);
+    sprite.metres_per_pixel = depth / reference.intrinsics(0, 0);
+    sprite.centre = principal_point;
     const double bottom_row_below_centre =
-        sprite.metres_per_pixel * (scene.frame_size.height - 1 - sprite.centre.y);
+        sprite.metres_per_pixel * (scene.frame_size.height - 1 - principal_point.y);
     sprite.anchor[1] = std::min(sprite.anchor[1], -bottom_row_below_centre);
     sprites.push_back(std::move(sprite));
   }
@@ -233,8 +298,11 @@ std::vector<Layer> farToNear(const DepthScene& scene) {
 
 }  // namespace
 
-DepthScene makeDepthScene(const SynthOptions& options, const Palette& palette,
-                          std::vector<SynthObject> objects) {
+DepthScene makeDepthScene(const SynthOptions& options) {
+  cv::RNG palette_rng = synthRng(options.seed, SynthStream::kPalette);
+  const Palette palette = makeBackgroundPalette(palette_rng);
+  cv::RNG object_rng = synthRng(options.seed, SynthStream::kObjects);
+  std::vector<SynthObject> objects = makeObjects(options, palette, object_rng);
   DepthScene scene;
   scene.frame_size = options.size;
   cv::RNG camera_rng = synthRng(options.seed, SynthStream::kCamera);
@@ -249,15 +317,16 @@ DepthScene makeDepthScene(const SynthOptions& options, const Palette& palette,
   }
   const SeenExtent seen = seenExtent(scene, far_z);
   const double width = seen.x_high - seen.x_low;
-  const double middle_z = scene.views[scene.views.size() / 2].centre[2];
+  const SynthPinhole reference = referenceView(scene);
   scene.backdrop = rectangleSurface(
-      surfaceTexture(width, -seen.y_top, far_z - middle_z, scene, palette, rng),
+      surfaceTexture(width, -seen.y_top, far_z - reference.centre[2], scene, palette, rng),
       cv::Vec3d(seen.x_low, seen.y_top, far_z), cv::Vec3d(1, 0, 0), width, cv::Vec3d(0, 1, 0),
       -seen.y_top);
   const double length = far_z - seen.z_near;
-  scene.ground = rectangleSurface(
-      surfaceTexture(width, length, kGroundTexelDistance, scene, palette, rng),
-      cv::Vec3d(seen.x_low, 0, far_z), cv::Vec3d(1, 0, 0), width, cv::Vec3d(0, 0, -1), length);
+  cv::Mat ground = surfaceTexture(width, length, kGroundTexelDistance, scene, palette, rng);
+  blurWithDistance(ground, cv::Size2d(width, length), far_z, reference);
+  scene.ground = rectangleSurface(std::move(ground), cv::Vec3d(seen.x_low, 0, far_z),
+                                  cv::Vec3d(1, 0, 0), width, cv::Vec3d(0, 0, -1), length);
   return scene;
 }
 

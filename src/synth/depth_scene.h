@@ -45,10 +45,10 @@ struct DepthScene {
   std::vector<Sprite> sprites;
 };
 
-// The scene of the options (scene kDepth), with `objects` (makeObjects()) as its sprites. The
-// camera, the layout and the textures come from their own random streams of options.seed.
-DepthScene makeDepthScene(const SynthOptions& options, const Palette& palette,
-                          std::vector<SynthObject> objects);
+// The scene of the options (scene kDepth), its sprites the objects makeObjects() makes for them.
+// The palette, the objects, the camera, the layout and the textures each come from their own
+// random stream of options.seed.
+DepthScene makeDepthScene(const SynthOptions& options);
 
 // The sprite's surface at frame t, without the part below the ground.
 PlanarSurface spriteSurface(const Sprite& sprite, int t);

@@ -7,7 +7,6 @@
 namespace movseg {
 namespace {
 
-constexpr int kSupersampling = 2;  // samples per pixel along each axis
 constexpr double kNearPlane = 0.05;  // metres: nothing nearer the camera is drawn
 // Pixels beyond the frame edge the clipped outline may reach: fillPoly then draws the frame's
 // edge pixels the same as any other.
@@ -103,11 +102,11 @@ Coverage surfaceCoverage(const PlanarSurface& surface, const SynthPinhole& view,
 cv::Mat surfaceColours(const PlanarSurface& surface, const SynthPinhole& view, cv::Rect box) {
   // Frame pixel (x, y) is covered by the fine pixels S (x, y) + (0..S-1); their centres average
   // back to (x, y).
-  constexpr double s = kSupersampling;
+  constexpr double s = kSurfaceSupersampling;
   const cv::Matx33d to_fine(s, 0, (s - 1) / 2 - s * box.x, 0, s, (s - 1) / 2 - s * box.y, 0, 0, 1);
   cv::Mat fine, colours;
   cv::warpPerspective(surface.texture, fine, to_fine * surfaceHomography(surface, view),
-                      box.size() * kSupersampling, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+                      box.size() * kSurfaceSupersampling, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
   cv::resize(fine, colours, box.size(), 0, 0, cv::INTER_AREA);
   return colours;
 }

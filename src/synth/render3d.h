@@ -39,8 +39,12 @@ std::vector<cv::Point2d> clipPolygon(const std::vector<cv::Point2d>& polygon,
 Coverage surfaceCoverage(const PlanarSurface& surface, const SynthPinhole& view,
                          cv::Size frame_size);
 
+// Samples per pixel along each axis of surfaceColours().
+constexpr int kSurfaceSupersampling = 2;
+
 // The surface's colours over `box`, each pixel the mean of 2x2 bilinear samples of the texture,
-// so that far, steeply seen surfaces alias less.
+// so that minified surfaces alias less (textures seen at grazing angles need more: depth_scene.cc
+// blurs the ground's with distance).
 cv::Mat surfaceColours(const PlanarSurface& surface, const SynthPinhole& view, cv::Rect box);
 
 }  // namespace movseg

@@ -167,15 +167,15 @@ SynthSequence::SynthSequence(const SynthOptions& options) {
   checkOptions(options);
   auto state = std::make_shared<State>();
   state->options = options;
-  cv::RNG palette_rng = synthRng(options.seed, SynthStream::kPalette);
-  const Palette palette = makeBackgroundPalette(palette_rng);
-  cv::RNG object_rng = synthRng(options.seed, SynthStream::kObjects);
-  std::vector<SynthObject> objects = makeObjects(options, palette, object_rng);
   if (options.scene == SynthScene::kDepth) {
-    state->depth = makeDepthScene(options, palette, std::move(objects));
+    state->depth = makeDepthScene(options);
     for (const SynthPinhole& view : state->depth->views)
       state->views.push_back(surfaceHomography(state->depth->ground, view));
   } else {
+    cv::RNG palette_rng = synthRng(options.seed, SynthStream::kPalette);
+    const Palette palette = makeBackgroundPalette(palette_rng);
+    cv::RNG object_rng = synthRng(options.seed, SynthStream::kObjects);
+    state->objects = makeObjects(options, palette, object_rng);
     cv::RNG camera_rng = synthRng(options.seed, SynthStream::kCamera);
     CameraPath path = makeCameraPath(options.camera, options.frames, options.size, camera_rng);
     state->views = std::move(path.views);
@@ -184,7 +184,6 @@ SynthSequence::SynthSequence(const SynthOptions& options) {
       state->canvas =
           makeBackgroundTexture(path.canvas, palette, options.size.width / 320.0, background_rng);
     }
-    state->objects = std::move(objects);
   }
   // A slow drift: at least 150 frames per cycle.
   cv::RNG light_rng = synthRng(options.seed, SynthStream::kIllumination);
