@@ -123,8 +123,8 @@ SynthPinhole viewAt(const DepthMotion& motion, int t, cv::Size frame_size, cv::R
 
 double restFocalLength(cv::Size frame_size) { return 0.9 * frame_size.width; }
 
-std::vector<SynthPinhole> makeDepthCameraPath(SynthCamera camera, int frames,
-                                              cv::Size frame_size, cv::RNG& rng) {
+std::vector<SynthPinhole> makeDepthCameraPath(SynthCamera camera, int frames, cv::Size frame_size,
+                                              cv::RNG& rng) {
   const DepthMotion motion = makeMotion(camera, rng);
   std::vector<SynthPinhole> views;
   views.reserve(frames);

@@ -20,7 +20,7 @@ double restFocalLength(cv::Size frame_size);
 // zoom up to 1 %/frame of focal length, rotate (roll) up to 0.5°/frame, shake the plane's
 // hand-held turns plus 0.5–1.5 cm of sideways and vertical jiggle. Travels and turns are bounded
 // waves like the plane's, so the scene the clip sees stays bounded however long the clip.
-std::vector<SynthPinhole> makeDepthCameraPath(SynthCamera camera, int frames,
-                                              cv::Size frame_size, cv::RNG& rng);
+std::vector<SynthPinhole> makeDepthCameraPath(SynthCamera camera, int frames, cv::Size frame_size,
+                                              cv::RNG& rng);
 
 }  // namespace movseg

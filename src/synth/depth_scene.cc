@@ -15,22 +15,22 @@ namespace movseg {
 namespace {
 
 // Distances in metres.
-constexpr double kClearance = 0.5;    // between a block and every position of the camera
-constexpr double kDepthGap = 0.1;     // between the z ranges of blocks and the sprites' planes
-constexpr double kMinBackdrop = 16;   // the backdrop is 16–24 m beyond the farthest camera
-constexpr double kMaxBackdrop = 24;   // position
+constexpr double kClearance = 0.5;   // between a block and every position of the camera
+constexpr double kDepthGap = 0.1;    // between the z ranges of blocks and the sprites' planes
+constexpr double kMinBackdrop = 16;  // the backdrop is 16–24 m beyond the farthest camera
+constexpr double kMaxBackdrop = 24;  // position
 constexpr double kGroundTexelDistance = 8;  // the ground's texture is 1:1 with pixels this far
-constexpr double kExtentMargin = 1;  // ground and backdrop reach this beyond what frames see
-constexpr double kFrameMargin = 4;   // pixels around each frame counted as seen
-constexpr double kMaxTexels = 8e6;   // per texture: bounds memory at large frame sizes
+constexpr double kExtentMargin = 1;         // ground and backdrop reach this beyond what frames see
+constexpr double kFrameMargin = 4;          // pixels around each frame counted as seen
+constexpr double kMaxTexels = 8e6;          // per texture: bounds memory at large frame sizes
 constexpr int kPlacementAttempts = 50;
 
 // What a kind of block looks like and where it stands.
 struct BlockKind {
   int min_count, max_count;
-  bool square;                   // a post: its depth is its width
-  double min_width, max_width;   // along x
-  double min_depth, max_depth;   // along z
+  bool square;                  // a post: its depth is its width
+  double min_width, max_width;  // along x
+  double min_depth, max_depth;  // along z
   double min_height, max_height;
   double min_distance, max_distance;  // horizontally from the camera of a frame that sees it
   // Only beyond the sprites: a wall or box could hide a sprite for the whole clip; thin posts
@@ -41,10 +41,10 @@ struct BlockKind {
 // Near posts come first, to get room: they are what shows the parallax. Posts are taller than
 // the camera, so near ones cross the whole frame.
 constexpr BlockKind kBlockKinds[] = {
-    {2, 2, true, 0.15, 0.35, 0, 0, 2.5, 5.0, 1.8, 3.5, false},      // near posts
-    {2, 4, true, 0.15, 0.35, 0, 0, 2.5, 5.0, 3.5, 14.0, false},     // far posts
-    {1, 2, false, 1.5, 4.0, 0.1, 0.2, 1.0, 2.5, 8.0, 16.0, true},   // walls
-    {1, 3, false, 0.5, 1.4, 0.5, 1.4, 0.4, 1.2, 8.0, 16.0, true},   // boxes
+    {2, 2, true, 0.15, 0.35, 0, 0, 2.5, 5.0, 1.8, 3.5, false},     // near posts
+    {2, 4, true, 0.15, 0.35, 0, 0, 2.5, 5.0, 3.5, 14.0, false},    // far posts
+    {1, 2, false, 1.5, 4.0, 0.1, 0.2, 1.0, 2.5, 8.0, 16.0, true},  // walls
+    {1, 3, false, 0.5, 1.4, 0.5, 1.4, 0.4, 1.2, 8.0, 16.0, true},  // boxes
 };
 
 // The box of all camera centres.
@@ -88,7 +88,7 @@ cv::Mat surfaceTexture(double width, double height, double distance, const Depth
 void blurWithDistance(cv::Mat& texture, const cv::Size2d& metres, double far_z,
                       const SynthPinhole& camera) {
   constexpr double kBlurPerFootprint = 0.6;  // Gaussian sigma, in pixel footprints
-  constexpr double kMinBlur = 0.3;  // texels: below this a level is the texture as it is
+  constexpr double kMinBlur = 0.3;           // texels: below this a level is the texture as it is
   const double focal = camera.intrinsics(0, 0), height = -camera.centre[1];
   const double texel_u = metres.width / texture.cols, texel_v = metres.height / texture.rows;
   // Level k stands for distance 2^(k/2).
@@ -140,9 +140,10 @@ struct SeenExtent {
 SeenExtent seenExtent(const DepthScene& scene, double far_z) {
   const double right = scene.frame_size.width - 1 + kFrameMargin;
   const double bottom = scene.frame_size.height - 1 + kFrameMargin;
-  const cv::Point2d corners[] = {
-      {-kFrameMargin, -kFrameMargin}, {right, -kFrameMargin}, {-kFrameMargin, bottom},
-      {right, bottom}};
+  const cv::Point2d corners[] = {{-kFrameMargin, -kFrameMargin},
+                                 {right, -kFrameMargin},
+                                 {-kFrameMargin, bottom},
+                                 {right, bottom}};
   SeenExtent seen;
   for (const SynthPinhole& view : scene.views) {
     seen.x_low = std::min(seen.x_low, view.centre[0]);
@@ -230,9 +231,9 @@ bool nearCamera(const cv::Vec3d& low, const cv::Vec3d& high, const Reach& reach)
 
 // The block's faces but the bottom, each facing out. A block is of one material: the background
 // texture around one of the palette's colours.
-std::vector<PlanarSurface> blockFaces(const cv::Vec3d& low, const cv::Vec3d& high,
-                                      double distance, const DepthScene& scene,
-                                      const Palette& scene_palette, cv::RNG& rng) {
+std::vector<PlanarSurface> blockFaces(const cv::Vec3d& low, const cv::Vec3d& high, double distance,
+                                      const DepthScene& scene, const Palette& scene_palette,
+                                      cv::RNG& rng) {
   Palette palette = scene_palette;
   std::rotate(palette.begin(), palette.begin() + rng.uniform(0, static_cast<int>(palette.size())),
               palette.end());
@@ -245,11 +246,11 @@ std::vector<PlanarSurface> blockFaces(const cv::Vec3d& low, const cv::Vec3d& hig
   };
   // A braced list is evaluated in order, so the textures are drawn in this order.
   return {
-      face(low, x, width, y, height),                                    // front, facing -z
-      face(cv::Vec3d(high[0], low[1], high[2]), -x, width, y, height),   // back, facing +z
-      face(cv::Vec3d(low[0], low[1], high[2]), -z, depth, y, height),    // left, facing -x
-      face(cv::Vec3d(high[0], low[1], low[2]), z, depth, y, height),     // right, facing +x
-      face(cv::Vec3d(low[0], low[1], high[2]), x, width, -z, depth),     // top, facing up
+      face(low, x, width, y, height),                                   // front, facing -z
+      face(cv::Vec3d(high[0], low[1], high[2]), -x, width, y, height),  // back, facing +z
+      face(cv::Vec3d(low[0], low[1], high[2]), -z, depth, y, height),   // left, facing -x
+      face(cv::Vec3d(high[0], low[1], low[2]), z, depth, y, height),    // right, facing +x
+      face(cv::Vec3d(low[0], low[1], high[2]), x, width, -z, depth),    // top, facing up
   };
 }
 
@@ -342,8 +343,10 @@ PlanarSurface spriteSurface(const Sprite& sprite, int t) {
   const cv::Vec3d origin = sprite.anchor + k * cv::Vec3d(pixel_zero.x, pixel_zero.y, 0);
   PlanarSurface surface;
   surface.texture = object.texture;
-  surface.to_world = cv::Matx33d(k * c, -k * s, origin[0], k * s, k * c, origin[1], 0, 0, origin[2]);
-  for (const cv::Point2d& p : object.outline) surface.outline.push_back(p + cv::Point2d(half, half));
+  surface.to_world =
+      cv::Matx33d(k * c, -k * s, origin[0], k * s, k * c, origin[1], 0, 0, origin[2]);
+  for (const cv::Point2d& p : object.outline)
+    surface.outline.push_back(p + cv::Point2d(half, half));
   // World y <= 0: the ground hides the rest.
   const cv::Vec3d above_ground(-k * s, -k * c, -origin[1]);
   surface.outline = clipPolygon(surface.outline, above_ground);

@@ -17,7 +17,7 @@ namespace movseg {
 
 // A box standing on the ground, its sides along the world axes: a post, a wall or a crate.
 struct Block {
-  cv::Vec3d low, high;  // opposite corners (x0, -height, z0) and (x1, 0, z1)
+  cv::Vec3d low, high;               // opposite corners (x0, -height, z0) and (x1, 0, z1)
   std::vector<PlanarSurface> faces;  // all but the bottom, each seen from outside only
 };
 

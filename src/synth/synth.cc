@@ -210,8 +210,7 @@ SynthFrame SynthSequence::frame(int t) const {
     out.pose = state.depth->views[t];
   } else {
     if (options.background) {
-      cv::warpPerspective(state.canvas, out.frame, state.views[t], options.size,
-                          cv::INTER_LINEAR);
+      cv::warpPerspective(state.canvas, out.frame, state.views[t], options.size, cv::INTER_LINEAR);
     } else {
       out.frame = cv::Mat::zeros(options.size, CV_8UC3);
     }

@@ -11,9 +11,10 @@
 namespace movseg {
 namespace {
 
-constexpr SynthCamera kAllCameras[] = {SynthCamera::kPan,    SynthCamera::kZoom,
-                                       SynthCamera::kRotate, SynthCamera::kShake,
-                                       SynthCamera::kStatic, SynthCamera::kMix};
+// Every camera motion the plane has (dolly and forward are the 3-D scene's only).
+constexpr SynthCamera kPlaneCameras[] = {SynthCamera::kPan,    SynthCamera::kZoom,
+                                         SynthCamera::kRotate, SynthCamera::kShake,
+                                         SynthCamera::kStatic, SynthCamera::kMix};
 
 SynthOptions makeOptions(SynthCamera camera, int frames, std::uint64_t seed = 1) {
   SynthOptions options;
@@ -134,7 +135,7 @@ TEST(Synth, MaskIsExactlyWhereObjectsWereDrawn) {
 // off), and better than any model a quarter pixel off: the model is right to well under a pixel.
 TEST(Synth, CameraModelAlignsConsecutiveBackgrounds) {
   const cv::Vec2d quarter_pixel_shifts[] = {{0.25, 0}, {-0.25, 0}, {0, 0.25}, {0, -0.25}};
-  for (const SynthCamera camera : kAllCameras) {
+  for (const SynthCamera camera : kPlaneCameras) {
     SynthOptions options = makeOptions(camera, 5, 11);
     options.noise_sigma = 0;
     const SynthSequence sequence(options);
@@ -163,7 +164,7 @@ TEST(Synth, CameraModelAlignsNoisyFramesToWithinNoise) {
 }
 
 TEST(Synth, CameraMotionHasRealisticMagnitudes) {
-  for (const SynthCamera camera : kAllCameras) {
+  for (const SynthCamera camera : kPlaneCameras) {
     const SynthSequence sequence(makeOptions(camera, 60, 3));
     double largest = 0, total = 0;
     for (int t = 1; t < sequence.size(); ++t) {
@@ -370,8 +371,7 @@ TEST(Synth, NoiseAndIlluminationFollowTheOptions) {
     for (int t = 10; t < clean.size(); t += 10) {
       const SynthFrame f = clean.frame(t);
       const cv::Mat background = ~(first.mask | f.mask);
-      const double ratio =
-          cv::mean(f.frame, background)[1] / cv::mean(first.frame, background)[1];
+      const double ratio = cv::mean(f.frame, background)[1] / cv::mean(first.frame, background)[1];
       largest_change = std::max(largest_change, std::abs(ratio - 1));
     }
     EXPECT_GT(largest_change, drift / 4) << "drift " << drift;
@@ -392,19 +392,30 @@ TEST(Synth, InvalidOptionsThrow) {
   throws([](SynthOptions& o) { o.objects = 4; });
   throws([](SynthOptions& o) { o.noise_sigma = -1; });
   throws([](SynthOptions& o) { o.illumination_drift = 0.9; });
+  throws([](SynthOptions& o) { o.object_speed_min = 0; });
+  throws([](SynthOptions& o) { o.object_speed_min = 4, o.object_speed_max = 3; });
+  throws([](SynthOptions& o) { o.object_speed_max = 31; });
+  throws([](SynthOptions& o) { o.camera = SynthCamera::kDolly; });  // the plane has no depth
+  throws([](SynthOptions& o) { o.camera = SynthCamera::kForward; });
   SynthOptions smallest;
   smallest.size = cv::Size(16, 16);
   smallest.frames = 1;
   EXPECT_NO_THROW(SynthSequence{smallest}.frame(0));
 }
 
-TEST(Synth, CameraNamesRoundTrip) {
-  for (const SynthCamera camera : kAllCameras) {
+TEST(Synth, CameraAndSceneNamesRoundTrip) {
+  for (const SynthCamera camera : kPlaneCameras) {
     EXPECT_EQ(parseSynthCamera(synthCameraName(camera)), camera);
   }
   EXPECT_EQ(parseSynthCamera("mix"), SynthCamera::kMix);
+  EXPECT_EQ(parseSynthCamera("dolly"), SynthCamera::kDolly);
+  EXPECT_EQ(parseSynthCamera("forward"), SynthCamera::kForward);
   EXPECT_THROW(parseSynthCamera("tilt"), std::invalid_argument);
   EXPECT_THROW(parseSynthCamera("Pan"), std::invalid_argument);
+  EXPECT_EQ(parseSynthScene("plane"), SynthScene::kPlane);
+  EXPECT_EQ(parseSynthScene("depth"), SynthScene::kDepth);
+  EXPECT_EQ(synthSceneName(SynthScene::kDepth), "depth");
+  EXPECT_THROW(parseSynthScene("3d"), std::invalid_argument);
 }
 
 }  // namespace
