@@ -1,4 +1,4 @@
-// movseg synth -o DIR [--frames N] [--size WxH] [--seed S] [--camera NAME] [--objects K] ...
+// movseg synth -o DIR [--frames N] [--size WxH] [--seed S] [--scene NAME] [--camera NAME] ...
 #include <iostream>
 #include <memory>
 #include <regex>
@@ -70,7 +70,8 @@ void addSynthCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "synth", "Write a deterministic synthetic sequence with exact ground truth");
   cmd->add_option("-o,--output", options->output_dir,
-                  "Folder for frames/, masks/ (00000.png, ...) and camera.jsonl")
+                  "Folder for frames/, masks/ (00000.png, ...), camera.jsonl (and for the depth "
+                  "scene poses.jsonl)")
       ->required();
   cmd->add_option("--frames", synth.frames, "Number of frames")->capture_default_str();
   cmd->add_option("--size", options->size, "Frame size WIDTHxHEIGHT")->capture_default_str();

@@ -78,8 +78,10 @@ DepthMotion makeMotion(SynthCamera camera, cv::RNG& rng) {
   const DepthMotionMix mix = depthMotionMix(camera);
   DepthMotion motion;
   motion.height = rng.uniform(1.4, 2.0);
-  motion.sideways = panWave(randomSign(rng) * mix.dolly * rng.uniform(0.03, 0.06), rng);
-  motion.forward = panWave(mix.forward * rng.uniform(0.06, 0.12), rng);
+  // Travels sweep back more slowly than pans: over a 60-frame clip they keep going one way.
+  const double sideways_rate = randomSign(rng) * mix.dolly * rng.uniform(0.03, 0.06);
+  motion.sideways = sweepWave(sideways_rate, 400, 700, rng);
+  motion.forward = sweepWave(mix.forward * rng.uniform(0.06, 0.12), 400, 700, rng);
   const double pan_rate = randomSign(rng) * mix.pan * rng.uniform(1.0, 4.0) / kFocalAt320;
   motion.yaw = panWave(pan_rate, rng);
   motion.pitch = waveWithRate(0.3 * pan_rate, 60, 120, rng);

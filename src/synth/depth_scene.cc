@@ -15,7 +15,7 @@ namespace movseg {
 namespace {
 
 // Distances in metres.
-constexpr double kClearance = 0.5;   // between a block and every position of the camera
+constexpr double kClearance = 1;     // between a block and every position of the camera
 constexpr double kDepthGap = 0.1;    // between the z ranges of blocks and the sprites' planes
 constexpr double kMinBackdrop = 16;  // the backdrop is 16–24 m beyond the farthest camera
 constexpr double kMaxBackdrop = 24;  // position

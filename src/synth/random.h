@@ -50,15 +50,18 @@ inline Wave waveWithRate(double max_rate, double min_period, double max_period, 
   return wave;
 }
 
-// A sweep that starts near its top speed `rate` and, over hundreds of frames, slows down and
-// sweeps back: what the camera sees stays bounded however long the clip.
-inline Wave panWave(double rate, cv::RNG& rng) {
+// A sweep that starts near its top speed `rate` and, over a period of min_period to max_period
+// frames, slows down and sweeps back: what the camera sees stays bounded however long the clip.
+inline Wave sweepWave(double rate, double min_period, double max_period, cv::RNG& rng) {
   Wave wave;
-  wave.period = rng.uniform(200.0, 360.0);
+  wave.period = rng.uniform(min_period, max_period);
   wave.phase = rng.uniform(-0.4, 0.4);
   wave.amplitude = rate * wave.period / (2 * CV_PI);
   return wave;
 }
+
+// The sweep of a pan: a period of 200 to 360 frames.
+inline Wave panWave(double rate, cv::RNG& rng) { return sweepWave(rate, 200, 360, rng); }
 
 // A fast wobble of hand-held shake: periods of 6 to 24 frames.
 inline Wave shakeWave(double amplitude, cv::RNG& rng) {
