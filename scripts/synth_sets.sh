@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
 # Synthetic benchmark sets, one dataset folder that `movseg bench OUT_DIR` reads
-# (OUT_DIR/<name>/frames, OUT_DIR/<name>/masks): 60 frames each at 320x240, seed 7.
-#   std-<camera>         the plane, default objects and sensor (README's synthetic table)
-#   camo-<camera>        the plane with the hard parts: camouflaged objects moving 1-3.5 px/frame,
-#                        sensor noise sigma 2, gain drifting within ±10 %
-#   depth-<camera>       the 3-D scene (near posts, parallax), default objects and sensor
-#   depth-camo-<camera>  the 3-D scene with the hard parts of camo-*
-# for <camera> in pan, zoom, rotate, shake, static, mix, and for the 3-D scene dolly and forward.
+# (OUT_DIR/<name>/frames, OUT_DIR/<name>/masks): 60 frames each at 320x240, seed 7
+# (docs/synth.md).
+#   std-<camera>   pan zoom rotate shake static mix: the plane, default objects and sensor (the
+#                  320x240 sequences of scripts/synth_table.sh)
+#   camo-<camera>  the same cameras, with the hard parts: camouflaged objects moving 1-3.5
+#                  px/frame, sensor noise sigma 2, gain drifting within ±10 %
+#   depth-<camera> dolly forward pan shake mix: the 3-D scene (near posts, parallax), default
+#                  objects and sensor
+#   depth-camo-<camera>  dolly forward: the 3-D scene with the hard parts of camo-*
 #   scripts/synth_sets.sh OUT_DIR        then: build/movseg bench OUT_DIR
 set -euo pipefail
 if [[ $# -ne 1 ]]; then

@@ -78,11 +78,14 @@ DepthMotion makeMotion(SynthCamera camera, cv::RNG& rng) {
   const DepthMotionMix mix = depthMotionMix(camera);
   DepthMotion motion;
   motion.height = rng.uniform(1.4, 2.0);
+  // One draw per statement: the order of the operands of * is unspecified.
+  const double sideways_sign = randomSign(rng);
+  const double sideways_rate = sideways_sign * mix.dolly * rng.uniform(0.03, 0.06);
   // Travels sweep back more slowly than pans: over a 60-frame clip they keep going one way.
-  const double sideways_rate = randomSign(rng) * mix.dolly * rng.uniform(0.03, 0.06);
   motion.sideways = sweepWave(sideways_rate, 400, 700, rng);
   motion.forward = sweepWave(mix.forward * rng.uniform(0.06, 0.12), 400, 700, rng);
-  const double pan_rate = randomSign(rng) * mix.pan * rng.uniform(1.0, 4.0) / kFocalAt320;
+  const double pan_sign = randomSign(rng);
+  const double pan_rate = pan_sign * mix.pan * rng.uniform(1.0, 4.0) / kFocalAt320;
   motion.yaw = panWave(pan_rate, rng);
   motion.pitch = waveWithRate(0.3 * pan_rate, 60, 120, rng);
   motion.roll = waveWithRate(mix.roll * rng.uniform(0.2, 0.5) * kDegree, 120, 240, rng);

@@ -10,6 +10,7 @@
 
 #include "synth/depth_camera.h"
 #include "synth/random.h"
+#include "synth/texture.h"
 
 namespace movseg {
 namespace {
@@ -184,8 +185,8 @@ SynthPinhole referenceView(const DepthScene& scene) {
 
 // Sprites are 4–8 m (in z) beyond the reference view, on its optical axis, and at least 2.5 m
 // beyond every camera position. Where the ground at a sprite's depth would show above the bottom
-// of the reference view, the sprite is raised until it does not, so that a sprite in view does
-// not sink into the ground (only when the camera moves can the ground hide its lower edge).
+// row of the reference view, the sprite is lifted until the ground is at that row: it sinks into
+// the ground only where its 2-D motion leaves the frame at the bottom, not whenever it is low.
 std::vector<Sprite> placeSprites(std::vector<SynthObject> objects, const DepthScene& scene,
                                  const Reach& reach, cv::RNG& rng) {
   const SynthPinhole reference = referenceView(scene);

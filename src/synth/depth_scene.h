@@ -11,7 +11,6 @@
 #include "synth/objects.h"
 #include "synth/render3d.h"
 #include "synth/synth.h"
-#include "synth/texture.h"
 
 namespace movseg {
 

@@ -16,12 +16,12 @@ cv::Matx33d columns(const cv::Vec3d& a, const cv::Vec3d& b, const cv::Vec3d& c) 
   return {a[0], b[0], c[0], a[1], b[1], c[1], a[2], b[2], c[2]};
 }
 
-// Camera coordinates of texture pixel (u, v) are A * (u, v, 1).
+// Camera coordinates of texture pixel (u, v) are A * (u, v, 1): its world point less the camera
+// centre, in the camera's axes.
 cv::Matx33d textureToCamera(const PlanarSurface& surface, const SynthPinhole& view) {
-  const cv::Matx33d& w = surface.to_world;
-  const cv::Vec3d origin(w(0, 2), w(1, 2), w(2, 2));
-  return view.rotation * columns(cv::Vec3d(w(0, 0), w(1, 0), w(2, 0)),
-                                 cv::Vec3d(w(0, 1), w(1, 1), w(2, 1)), origin - view.centre);
+  cv::Matx33d from_centre = surface.to_world;
+  for (int i = 0; i < 3; ++i) from_centre(i, 2) -= view.centre[i];
+  return view.rotation * from_centre;
 }
 
 // The half-spaces of camera space that are drawn, as n · (x, y, z) + d >= 0 in (n, d): in

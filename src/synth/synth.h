@@ -34,11 +34,12 @@ struct SynthOptions {
   double noise_sigma = 2.5;
   // Slow global illumination change: the gain stays within 1 ± this.
   double illumination_drift = 0.04;
-  // false: the objects are drawn on black. Object textures never contain black, so the ground
-  // truth can then be checked pixel by pixel.
+  // false: the objects are drawn on black (in the 3-D scene, every static surface is black but
+  // still hides what is behind it). Object textures never contain black, so the ground truth can
+  // then be checked pixel by pixel.
   bool background = true;
-  // Object speeds in pixels per frame at 320x240 (scaled with the frame width): each object
-  // keeps one speed drawn uniformly from [min, max].
+  // Object speeds in pixels per frame at 320x240 (scaled with the frame width; in the 3-D scene,
+  // as a still camera sees them): each object keeps one speed drawn uniformly from [min, max].
   double object_speed_min = 1;
   double object_speed_max = 6;
   // true: object textures come from the background's texture process and palette, so that an

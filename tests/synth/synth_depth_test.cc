@@ -181,6 +181,14 @@ TEST(SynthDepth, SameOptionsGiveIdenticalBytesInAnyOrder) {
   EXPECT_FALSE(sameBytes(a.frame(3).frame, SynthSequence(options).frame(3).frame));
 }
 
+TEST(SynthDepth, SmallestClipWorks) {
+  SynthOptions options = depthOptions(SynthCamera::kMix, 1, 1);
+  options.size = cv::Size(16, 16);
+  const SynthFrame f = SynthSequence(options).frame(0);
+  EXPECT_EQ(f.frame.size(), options.size);
+  EXPECT_EQ(f.camera, cv::Matx33d::eye());
+}
+
 // The ground and backdrop reach as far as any frame looks: a pixel left undrawn would be black
 // (every texture is at least 16). Long clips for the sweeping motions.
 TEST(SynthDepth, EveryPixelIsDrawn) {
