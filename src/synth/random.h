@@ -1,6 +1,7 @@
 // Random numbers of the synthetic generator. Each part (palette, background, camera, objects,
-// illumination, each frame's noise) draws from its own cv::RNG seeded from the options' seed, so
-// a part drawing more numbers never shifts another's, and frame t's noise needs no earlier frame.
+// illumination, the 3-D scene, each frame's noise) draws from its own cv::RNG seeded from the
+// options' seed, so a part drawing more numbers never shifts another's, and frame t's noise needs
+// no earlier frame.
 #pragma once
 
 #include <cmath>
