@@ -6,9 +6,11 @@
 namespace movseg {
 
 struct Segmenter::Impl {
-  explicit Impl(const Params& params) : loop(params), job(loop.newJob()) {}
+  explicit Impl(const Params& params) : loop(params), jobs{loop.newJob(), loop.newJob()} {}
   FrameLoop loop;
-  std::unique_ptr<FrameLoop::Job> job;
+  // In turn, as in a stream: a pipeline may keep references into the previous frame's analysis.
+  std::unique_ptr<FrameLoop::Job> jobs[2];
+  int next = 0;
 };
 
 Segmenter::Segmenter(const Params& params) {
@@ -20,7 +22,8 @@ Segmenter::Segmenter(Segmenter&&) noexcept = default;
 Segmenter& Segmenter::operator=(Segmenter&&) noexcept = default;
 
 Result Segmenter::process(const cv::Mat& frame) {
-  FrameLoop::Job& job = *impl_->job;
+  FrameLoop::Job& job = *impl_->jobs[impl_->next];
+  impl_->next = 1 - impl_->next;
   impl_->loop.analyse(impl_->loop.ownedBgr(frame), &job);
   impl_->loop.segment(&job);
   return std::move(job.result);

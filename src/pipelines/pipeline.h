@@ -32,8 +32,9 @@ class DebugSink {
 };
 
 // What a pipeline learns from one frame before it segments it. Each pipeline derives its own;
-// the frame loop keeps a few and hands them back for reuse, so that their buffers are allocated
-// once.
+// the frame loop keeps two and hands them out in turn, so that their buffers are allocated once
+// and the previous frame's analysis stays intact while the next one is made (a pipeline may
+// keep references into it).
 struct Analysis {
   virtual ~Analysis() = default;
   bool first_frame = false;  // no previous frame: stream start, reset() or a size change
@@ -73,5 +74,6 @@ std::unique_ptr<Pipeline> makePaperPipeline(const Params& params);
 std::unique_ptr<Pipeline> makeDiffPipeline(const Params& params);
 std::unique_ptr<Pipeline> makeMog2Pipeline(const Params& params);
 std::unique_ptr<Pipeline> makeCompensatedMog2Pipeline(const Params& params);
+std::unique_ptr<Pipeline> makeDensePipeline(const Params& params);
 
 }  // namespace movseg

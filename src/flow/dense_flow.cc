@@ -1,0 +1,34 @@
+#include "flow/dense_flow.h"
+
+namespace movseg {
+
+DenseFlow::DenseFlow(int finest_scale)
+    : dis_(cv::DISOpticalFlow::create(cv::DISOpticalFlow::PRESET_FAST)) {
+  dis_->setFinestScale(finest_scale);
+}
+
+void DenseFlow::next(const cv::Mat& grey, cv::Mat* flow) {
+  CV_Assert(grey.type() == CV_8UC1 && grey.isContinuous());
+  if (previous_grey_.size() != grey.size()) {
+    flow->release();
+  } else {
+    // DIS starts from the flow it is given (motion changes little from one pair to the next);
+    // the first pair starts from rest.
+    if (previous_flow_.empty()) {
+      flow->create(grey.size(), CV_32FC2);
+      flow->setTo(cv::Scalar::all(0));
+    } else {
+      previous_flow_.copyTo(*flow);
+    }
+    dis_->calc(grey, previous_grey_, *flow);
+  }
+  previous_grey_ = grey;
+  previous_flow_ = *flow;
+}
+
+void DenseFlow::reset() {
+  previous_grey_.release();
+  previous_flow_.release();
+}
+
+}  // namespace movseg
