@@ -75,6 +75,19 @@ cv::Mat resizedTo(const cv::Mat& image, cv::Size size) {
   return out;
 }
 
+void downscale(const cv::Mat& image, cv::Size size, cv::Mat* halved, cv::Mat* out) {
+  const cv::Mat* source = &image;
+  while (source->cols >= 2 * size.width && source->rows >= 2 * size.height) {
+    cv::resize(*source, *halved, cv::Size(source->cols / 2, source->rows / 2), 0, 0, cv::INTER_AREA);
+    source = halved;
+  }
+  if (source->size() == size) {
+    source->copyTo(*out);
+  } else {
+    cv::resize(*source, *out, size, 0, 0, cv::INTER_LINEAR);
+  }
+}
+
 cv::Size scaledSize(cv::Size size, int width) {
   if (width <= 0 || width >= size.width) return size;
   const double scale = static_cast<double>(width) / size.width;

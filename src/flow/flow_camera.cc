@@ -1,8 +1,6 @@
 #include "flow/flow_camera.h"
 
 #include <algorithm>
-#include <cstdlib>
-#include <opencv2/calib3d.hpp>
 
 #include "motion/estimators.h"
 #include "motion/model.h"
@@ -68,12 +66,6 @@ FlowCamera fitFlowCamera(const cv::Mat& flow, const cv::Mat& texture, const cv::
   options.max_trials = params.ransac_iterations;
   options.max_error = params.flow_inlier_distance;
   options.sample_grid = params.ransac_grid;
-  if (std::getenv("MOVSEG_FINDH")) {
-    cv::Mat h = x.size() >= 4 ? cv::findHomography(x, y, cv::RANSAC, params.flow_inlier_distance, cv::noArray(), 500) : cv::Mat();
-    camera.fallback = h.empty();
-    if (!h.empty()) camera.model = cv::Matx33d(h);
-    return camera;
-  }
   const auto report = Ransac<HomographyEstimator>(options).estimate(x, y, flow.size(), rng);
   camera.fallback = !report.success;
   if (report.success) camera.model = report.model;

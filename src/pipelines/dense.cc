@@ -42,11 +42,7 @@ class DensePipeline : public Pipeline {
     Clock::time_point start = Clock::now();
     const cv::Size size = scaledSize(bgr.size(), params_.segmentation_width);
     a.scale = static_cast<double>(size.width) / bgr.cols;
-    if (size == bgr.size()) {
-      bgr.copyTo(a.bgr);
-    } else {
-      cv::resize(bgr, a.bgr, size, 0, 0, cv::INTER_AREA);
-    }
+    downscale(bgr, size, &halved_, &a.bgr);
     cv::cvtColor(a.bgr, a.grey, cv::COLOR_BGR2GRAY);
     cv::cornerMinEigenVal(a.grey, a.texture, 5);
     a.prepare_ms = millisecondsSince(start);
@@ -114,6 +110,7 @@ class DensePipeline : public Pipeline {
   cv::RNG rng_;
   cv::Mat mask_;  // the last frame's, at the working scale
   cv::Mat residual_;
+  cv::Mat halved_;  // scratch of downscale()
 };
 
 }  // namespace
