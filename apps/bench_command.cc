@@ -1,4 +1,4 @@
-// movseg bench DATA [--methods paper,diff,mog2,mog2-comp] [--size WxH] [--json FILE]
+// movseg bench DATA [--methods paper,diff,mog2,mog2-comp] [--size WxH] [--json FILE] [--html FILE]
 // Every method on every sequence of DATA: accuracy against the ground truth and speed, in one
 // table (the README's tables come from here).
 #include <cmath>
@@ -15,6 +15,7 @@
 
 #include "commands.h"
 #include "eval/dataset.h"
+#include "html_report.h"
 #include "io/atomic_write.h"
 #include "movseg/fields.h"
 #include "params_options.h"
@@ -31,6 +32,7 @@ struct BenchOptions {
   std::vector<std::string> methods = enumNames<Method>();
   std::string size;  // "WxH" or empty (native)
   std::string json_file;
+  std::string html_file;
   Params params;
 };
 
@@ -38,6 +40,7 @@ struct BenchRow {
   std::string sequence, method;
   ScoreSummary score;
   double ms_per_frame = 0;  // median process() wall time
+  ReportRun report;         // with --html only
 };
 
 cv::Size parseSize(const std::string& text) {
@@ -72,8 +75,11 @@ BenchRow benchOne(const GtSequence& sequence, const std::string& method, const B
   segment.quiet = true;
   segment.resize = parseSize(options.size);
   const SegmentSummary summary = runSegmentation(segment);
-  BenchRow row{sequence.name, method, summarize(scoreSequence(sequence, segment.output_dir)),
-               summary.frame_ms.median()};
+  const SequenceScore score = scoreSequence(sequence, segment.output_dir);
+  BenchRow row{sequence.name, method, summarize(score), summary.frame_ms.median(), {}};
+  if (!options.html_file.empty()) {
+    row.report = reportRun(sequence, score, segment.output_dir, method, row.ms_per_frame);
+  }
   fs::remove_all(segment.output_dir);
   return row;
 }
@@ -106,7 +112,7 @@ std::vector<BenchRow> meanRows(const std::vector<BenchRow>& rows, const BenchOpt
     }
     double mean_ms = 0;
     for (double m : ms) mean_ms += m / static_cast<double>(ms.size());
-    means.push_back({"MEAN", method, meanOverSequences(scores, "MEAN"), mean_ms});
+    means.push_back({"MEAN", method, meanOverSequences(scores, "MEAN"), mean_ms, {}});
   }
   return means;
 }
@@ -143,9 +149,9 @@ void runBench(const BenchOptions& options) {
   progress.finish();
   fs::remove_all(scratch);
   const std::vector<BenchRow> means = meanRows(rows, options);
-  std::cout << "movseg bench on " << cpuModel() << ", one thread"
-            << (options.size.empty() ? ", native size" : ", frames resized to " + options.size)
-            << "\n" << formatRows(rows) << formatRows(means).substr(formatRows({}).size())
+  const std::string setting = "movseg bench on " + cpuModel() + ", one thread" +
+                              (options.size.empty() ? ", native size" : ", frames resized to " + options.size);
+  std::cout << setting << "\n" << formatRows(rows) << formatRows(means).substr(formatRows({}).size())
             << "J, F, error: means over frames after the first of each sequence (it has no "
                "previous frame); MEAN rows: each sequence weighs the same; ms/frame: median "
                "per-frame time of the method (MEAN: mean of the medians).\n";
@@ -153,6 +159,11 @@ void runBench(const BenchOptions& options) {
     const nlohmann::json report{{"cpu", cpuModel()}, {"size", options.size},
                                 {"rows", rowsJson(rows)}, {"means", rowsJson(means)}};
     writeTextAtomic(options.json_file, report.dump(2) + "\n");
+  }
+  if (!options.html_file.empty()) {
+    std::vector<ReportRun> runs;
+    for (const BenchRow& row : rows) runs.push_back(row.report);
+    writeHtmlReport(options.html_file, "movseg bench: " + options.data, setting, runs);
   }
 }
 
@@ -170,6 +181,8 @@ void addBenchCommand(CLI::App& app) {
       ->check(CLI::IsMember(enumNames<Method>()));
   cmd->add_option("--size", options->size, "Resize frames to WxH before segmenting");
   cmd->add_option("--json", options->json_file, "Write the table as JSON");
+  cmd->add_option("--html", options->html_file,
+                  "Write a report page: the table, charts of J, each sequence's worst frames");
   addParamsOptions(cmd, &options->params, {"method"});
   cmd->callback([options] { runBench(*options); });
 }

@@ -10,8 +10,8 @@
 namespace movseg {
 
 // Converts any supported frame to 8-bit BGR: grey and BGRA are converted, 16-bit is scaled by
-// 1/256, float frames are read as [0, 1]. Throws std::invalid_argument for an empty frame or
-// an unsupported channel count.
+// 1/256, float frames are read as [0, 1] (NaN as 0). Throws std::invalid_argument for an empty
+// frame, an unsupported channel count, or a float frame with a value outside [0, 1].
 cv::Mat toBgr8(const cv::Mat& frame);
 
 // `image` resized to `size` (area interpolation); the same Mat when `size` is empty or equal.
