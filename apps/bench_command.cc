@@ -149,9 +149,11 @@ void runBench(const BenchOptions& options) {
   progress.finish();
   fs::remove_all(scratch);
   const std::vector<BenchRow> means = meanRows(rows, options);
-  const std::string setting = "movseg bench on " + cpuModel() + ", one thread" +
-                              (options.size.empty() ? ", native size" : ", frames resized to " + options.size);
-  std::cout << setting << "\n" << formatRows(rows) << formatRows(means).substr(formatRows({}).size())
+  const std::string setting =
+      "movseg bench on " + cpuModel() + ", one thread" +
+      (options.size.empty() ? ", native size" : ", frames resized to " + options.size);
+  std::cout << setting << "\n"
+            << formatRows(rows) << formatRows(means).substr(formatRows({}).size())
             << "J, F, error: means over frames after the first of each sequence (it has no "
                "previous frame); MEAN rows: each sequence weighs the same; ms/frame: median "
                "per-frame time of the method (MEAN: mean of the medians).\n";

@@ -57,8 +57,8 @@ GType modeType() {
   if (type == 0) {
     static const GEnumValue values[] = {
         {static_cast<gint>(Mode::kMask), "the mask of what moves (GRAY8, 0 / 255)", "mask"},
-        {static_cast<gint>(Mode::kOverlay), "the mask tinted over the frame, features as dots (BGR)",
-         "overlay"},
+        {static_cast<gint>(Mode::kOverlay),
+         "the mask tinted over the frame, features as dots (BGR)", "overlay"},
         {0, nullptr, nullptr}};
     type = g_enum_register_static("GstMovsegMode", values);
   }
@@ -205,8 +205,8 @@ GstFlowReturn transformFrame(GstVideoFilter* filter, GstVideoFrame* in, GstVideo
     movseg::drawOverlay(frame, result, "frame " + std::to_string(state.frame)).copyTo(output);
   }
   if (post_messages) {
-    GstStructure* diagnostics =
-        movseg::gst::diagnosticsStructure(result.diagnostics, state.frame, GST_BUFFER_PTS(in->buffer));
+    GstStructure* diagnostics = movseg::gst::diagnosticsStructure(
+        result.diagnostics, state.frame, GST_BUFFER_PTS(in->buffer));
     gst_element_post_message(GST_ELEMENT(filter),
                              gst_message_new_element(GST_OBJECT(filter), diagnostics));
   }
@@ -240,8 +240,9 @@ void addPadTemplates(GstElementClass* element_class) {
       gst_pad_template_new("sink", GST_PAD_SINK, GST_PAD_ALWAYS,
                            gst_caps_from_string(GST_VIDEO_CAPS_MAKE(MOVSEG_INPUT_FORMATS))));
   gst_element_class_add_pad_template(
-      element_class, gst_pad_template_new("src", GST_PAD_SRC, GST_PAD_ALWAYS,
-                                          gst_caps_from_string(GST_VIDEO_CAPS_MAKE("{ GRAY8, BGR }"))));
+      element_class,
+      gst_pad_template_new("src", GST_PAD_SRC, GST_PAD_ALWAYS,
+                           gst_caps_from_string(GST_VIDEO_CAPS_MAKE("{ GRAY8, BGR }"))));
 }
 
 }  // namespace

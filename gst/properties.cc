@@ -61,7 +61,8 @@ GParamSpec* paramSpec(const FieldInfo& field, const FieldValue& default_value) {
                                  field.max, std::get<double>(default_value), flags);
     case FieldType::kChoice: {
       const auto& choices = field.choices;
-      const auto chosen = std::find(choices.begin(), choices.end(), std::get<std::string>(default_value));
+      const auto chosen =
+          std::find(choices.begin(), choices.end(), std::get<std::string>(default_value));
       return g_param_spec_enum(name.c_str(), field.name.c_str(), blurb.c_str(), choiceType(field),
                                static_cast<gint>(chosen - choices.begin()), flags);
     }
@@ -77,7 +78,8 @@ std::string valueText(const FieldInfo& field, const GValue* value) {
     case FieldType::kBool: return g_value_get_boolean(value) ? "true" : "false";
     case FieldType::kInt: return std::to_string(g_value_get_int(value));
     case FieldType::kUnsigned: return std::to_string(g_value_get_uint64(value));
-    case FieldType::kChoice: return field.choices.at(static_cast<std::size_t>(g_value_get_enum(value)));
+    case FieldType::kChoice:
+      return field.choices.at(static_cast<std::size_t>(g_value_get_enum(value)));
     case FieldType::kReal: {
       char text[32];
       std::snprintf(text, sizeof text, "%.17g", g_value_get_double(value));  // exact round trip

@@ -27,7 +27,8 @@ def main():
         sys.exit(batch(sys.argv[2:]))
     path = cli_path()
     if path is None:
-        sys.exit("movseg: the movseg command-line tool was found neither next to this package nor on PATH")
+        sys.exit("movseg: the movseg command-line tool was found neither with this package nor "
+                 "on PATH")
     os.execv(path, [path] + sys.argv[1:])
 
 

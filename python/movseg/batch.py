@@ -15,6 +15,7 @@ A finished input (one whose folder exists) is skipped on a re-run unless --force
 is reported with its error and does not stop the others; the exit status is 1 when any failed.
 """
 import argparse
+import contextlib
 import csv
 import io
 import json
@@ -37,7 +38,7 @@ def parse_arguments(argv):
         prog="python3 -m movseg batch",
         description="Segment many videos at once on Dask distributed, one task per input.")
     parser.add_argument("inputs", nargs="+", metavar="INPUT",
-                        help="video file, folder of frames, or text file listing inputs (one a line)")
+                        help="video file, folder of frames, or .txt file listing such inputs")
     parser.add_argument("-o", "--output", required=True, metavar="OUTDIR",
                         help="folder of the results: OUTDIR/<name>/ per input, OUTDIR/summary.csv")
     parser.add_argument("--scheduler", metavar="ADDRESS",
@@ -186,15 +187,18 @@ def describe(row):
     return text + (" (finished before; --force redoes it)" if row["status"] == "skipped" else "")
 
 
-def start_client(args):
-    # Imported here: the rest of the package does not need Dask.
-    from dask.distributed import Client, LocalCluster
+@contextlib.contextmanager
+def dask_client(args):
+    """A client of the scheduler at --scheduler, else of a local cluster closed with it."""
+    from dask.distributed import Client, LocalCluster  # the rest of the package needs no Dask
 
     if args.scheduler:
-        return Client(args.scheduler)
-    cluster = LocalCluster(n_workers=args.workers or os.cpu_count(), threads_per_worker=1,
-                           processes=True, dashboard_address=None)
-    return Client(cluster)
+        with Client(args.scheduler) as client:
+            yield client
+        return
+    with LocalCluster(n_workers=args.workers or os.cpu_count(), threads_per_worker=1,
+                      processes=True, dashboard_address=None) as cluster, Client(cluster) as client:
+        yield client
 
 
 def run(args):
@@ -216,7 +220,7 @@ def run(args):
     for index, name in enumerate(rows, 1):
         print(f"batch: [{index}/{count}] {name} {describe(rows[name])}", flush=True)
     if todo:
-        with start_client(args) as client:
+        with dask_client(args) as client:
             futures = {client.submit(segment_input, name, named[name], output, options,
                                      args.gt and os.path.join(os.path.abspath(args.gt), name),
                                      pure=False): name for name in todo}

@@ -4,14 +4,7 @@
 # imports from PREFIX/PYTHON_DIR with its type stubs, `python3 -m movseg` runs the installed CLI
 # (not the build tree's), and `movseg --version` and `movseg.__version__` agree.
 
-function(run)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT code EQUAL 0)
-    message(FATAL_ERROR "failed (${code}): ${ARGN}\n${out}${err}")
-  endif()
-  string(STRIP "${out}" out)
-  set(output "${out}" PARENT_SCOPE)
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/run.cmake)
 
 set(prefix ${WORK_DIR}/prefix)
 file(REMOVE_RECURSE ${WORK_DIR})

@@ -97,8 +97,10 @@ def test_runs_on_a_scheduler_and_worker_started_by_hand(inputs, tmp_path):
                                "--no-dashboard"], stdout=logs, stderr=logs)
     try:
         time.sleep(1)
-        done = batch(str(inputs / "run/frames"), "-o", str(tmp_path / "out"), "--scheduler", address)
-        assert done.returncode == 0, done.stdout + done.stderr + (tmp_path / "cluster.log").read_text()
+        done = batch(str(inputs / "run/frames"), "-o", str(tmp_path / "out"),
+                     "--scheduler", address)
+        log = (tmp_path / "cluster.log").read_text()
+        assert done.returncode == 0, done.stdout + done.stderr + log
         assert summary(tmp_path / "out")["run"]["status"] == "done"
     finally:
         for process in (worker, scheduler):

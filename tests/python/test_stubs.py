@@ -36,7 +36,8 @@ def test_mypy_checks_user_code_against_the_stubs(tmp_path):
         [sys.executable, "-m", "mypy", "--ignore-missing-imports", "--no-error-summary",
          "--cache-dir", str(tmp_path / "cache"), str(tmp_path / "user.py")],
         capture_output=True, text=True, env={**os.environ, "MYPYPATH": package_dir})
-    flagged = sorted(int(line.split(":")[1]) for line in done.stdout.splitlines() if ": error:" in line)
+    errors = [line for line in done.stdout.splitlines() if ": error:" in line]
+    flagged = sorted(int(line.split(":")[1]) for line in errors)
     assert flagged == [13, 14, 15], done.stdout + done.stderr
 
 
