@@ -1,4 +1,4 @@
-// movseg bench DATA [--methods paper,diff,mog2,mog2-comp] [--size WxH] [--json FILE]
+// movseg bench DATA [--methods paper,diff,mog2,mog2-comp] [--size WxH] [--json FILE] [--html FILE]
 // Every method on every sequence of DATA: accuracy against the ground truth and speed, in one
 // table (the README's tables come from here).
 #include <algorithm>
@@ -17,6 +17,7 @@
 
 #include "commands.h"
 #include "eval/dataset.h"
+#include "html_report.h"
 #include "io/atomic_write.h"
 #include "movseg/fields.h"
 #include "params_options.h"
@@ -33,6 +34,7 @@ struct BenchOptions {
   std::vector<std::string> methods = enumNames<Method>();
   std::string size;  // "WxH" or empty (native)
   std::string json_file;
+  std::string html_file;
   Params params;
 };
 
@@ -45,6 +47,7 @@ struct BenchRow {
   double ms_per_frame = 0;      // median process() wall time
   double faults_per_frame = 0;  // minor page faults of the whole run (reads, writes included)
   double vs_reference = 0;      // ms_per_frame over kReference's on the same sequence(s)
+  ReportRun report;             // with --html only
 };
 
 long minorFaults() {
@@ -86,9 +89,14 @@ BenchRow benchOne(const GtSequence& sequence, const std::string& method, const B
   segment.resize = parseSize(options.size);
   const long faults = minorFaults();
   const SegmentSummary summary = runSegmentation(segment);
-  BenchRow row{sequence.name, method, summarize(scoreSequence(sequence, segment.output_dir)),
-               summary.frame_ms.median(),
-               static_cast<double>(minorFaults() - faults) / std::max(summary.frames, 1)};
+  const double faults_per_frame =
+      static_cast<double>(minorFaults() - faults) / std::max(summary.frames, 1);
+  const SequenceScore score = scoreSequence(sequence, segment.output_dir);
+  BenchRow row{sequence.name, method, summarize(score), summary.frame_ms.median(),
+               faults_per_frame, 0, {}};
+  if (!options.html_file.empty()) {
+    row.report = reportRun(sequence, score, segment.output_dir, method, row.ms_per_frame);
+  }
   fs::remove_all(segment.output_dir);
   return row;
 }
@@ -135,7 +143,7 @@ std::vector<BenchRow> meanRows(const std::vector<BenchRow>& rows,
       faults += r.faults_per_frame;
     }
     const auto n = static_cast<double>(std::max<size_t>(scores.size(), 1));
-    means.push_back({"MEAN", method, meanOverSequences(scores, "MEAN"), ms / n, faults / n});
+    means.push_back({"MEAN", method, meanOverSequences(scores, "MEAN"), ms / n, faults / n, 0, {}});
   }
   return means;
 }
@@ -178,9 +186,11 @@ void runBench(const BenchOptions& options) {
   std::vector<BenchRow> means = meanRows(rows, methods);
   compareWithReference(&rows);
   compareWithReference(&means);
-  std::cout << "movseg bench on " << cpuModel() << ", one thread"
-            << (options.size.empty() ? ", native size" : ", frames resized to " + options.size)
-            << "\n" << formatRows(rows) << formatRows(means).substr(formatRows({}).size())
+  const std::string setting =
+      "movseg bench on " + cpuModel() + ", one thread" +
+      (options.size.empty() ? ", native size" : ", frames resized to " + options.size);
+  std::cout << setting << "\n"
+            << formatRows(rows) << formatRows(means).substr(formatRows({}).size())
             << "J, F, error: means over frames after the first of each sequence (it has no "
                "previous frame); MEAN rows: each sequence weighs the same; ms/frame: median "
                "per-frame time of the method (MEAN: mean of the medians); x mog2: over OpenCV "
@@ -190,6 +200,11 @@ void runBench(const BenchOptions& options) {
     const nlohmann::json report{{"cpu", cpuModel()}, {"size", options.size},
                                 {"rows", rowsJson(rows)}, {"means", rowsJson(means)}};
     writeTextAtomic(options.json_file, report.dump(2) + "\n");
+  }
+  if (!options.html_file.empty()) {
+    std::vector<ReportRun> runs;
+    for (const BenchRow& row : rows) runs.push_back(row.report);
+    writeHtmlReport(options.html_file, "movseg bench: " + options.data, setting, runs);
   }
 }
 
@@ -207,6 +222,8 @@ void addBenchCommand(CLI::App& app) {
       ->check(CLI::IsMember(enumNames<Method>()));
   cmd->add_option("--size", options->size, "Resize frames to WxH before segmenting");
   cmd->add_option("--json", options->json_file, "Write the table as JSON");
+  cmd->add_option("--html", options->html_file,
+                  "Write a report page: the table, charts of J, each sequence's worst frames");
   addParamsOptions(cmd, &options->params, {"method"});
   cmd->callback([options] { runBench(*options); });
 }

@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   quietLibraries();
   cv::setNumThreads(1);  // per-frame work is small; one core per stream is the design point
   CLI::App app{"movseg: moving object segmentation for freely moving cameras"};
+  app.set_version_flag("--version", "movseg " MOVSEG_VERSION);
   app.require_subcommand(1);
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
     return std::string("movseg: error: ") + e.what() + "\n";

@@ -48,9 +48,11 @@ class Segmenter {
   Segmenter(const Segmenter&) = delete;
   Segmenter& operator=(const Segmenter&) = delete;
 
-  // Takes the next frame: 8-bit or 16-bit, grey, BGR or BGRA, at least 1x1. Returns the mask of
-  // what moves in it. Throws std::invalid_argument for an empty frame or an unsupported type;
-  // never throws for a hard scene (flat, noisy, scene cut): see Diagnostics' flags.
+  // Takes the next frame: grey, BGR or BGRA (RGB: convert it first, cv::COLOR_RGB2BGR), at
+  // least 1x1; 8-bit or 16-bit, or float (32 or 64 bits) with values in [0, 1] — a float frame
+  // in 0-255 is rejected. Returns the mask of what moves in it. Throws std::invalid_argument for
+  // an empty frame, an unsupported type or a float value outside [0, 1]; never throws for a
+  // hard scene (flat, noisy, scene cut): see Diagnostics' flags.
   Result process(const cv::Mat& frame);
 
   // Forgets the previous frame: the next frame is treated as a first frame.

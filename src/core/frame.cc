@@ -2,14 +2,29 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
 #include <opencv2/imgproc.hpp>
 
 namespace movseg {
-
 namespace {
+
+// A float frame in 0-255 (what cv2 or numpy arithmetic on 8-bit frames gives) would saturate
+// to white and give an empty mask without a word: refuse it, saying what is expected.
+void requireUnitRange(const cv::Mat& real) {
+  double low = 0, high = 0;
+  cv::minMaxLoc(real.reshape(1), &low, &high);
+  if (low < 0 || high > 1) {
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "float frame values must be in [0, 1], got [%g, %g] (for 0-255, pass 8-bit "
+                  "pixels or divide by 255)",
+                  low, high);
+    throw std::invalid_argument(text);
+  }
+}
 
 // 8-bit, any channel count: the depth conversion of toBgr8.
 cv::Mat eightBit(const cv::Mat& frame) {
@@ -24,6 +39,7 @@ cv::Mat eightBit(const cv::Mat& frame) {
       cv::Mat finite;
       frame.convertTo(finite, CV_32F);  // patchNaNs takes 32-bit floats only
       cv::patchNaNs(finite, 0.0);       // NaN would otherwise become an arbitrary byte
+      requireUnitRange(finite);
       finite.convertTo(eight, CV_8U, 255.0);
       break;
     }

@@ -10,8 +10,9 @@
 namespace movseg {
 
 // Converts any supported frame to 8-bit BGR: grey and BGRA are converted, 16-bit is scaled by
-// 1/256, float frames are read as [0, 1]. Throws std::invalid_argument for an empty frame or
-// an unsupported channel count. The result may share the frame's data.
+// 1/256, float frames are read as [0, 1] (NaN as 0). Throws std::invalid_argument for an empty
+// frame, an unsupported channel count, or a float frame with a value outside [0, 1]. The result
+// may share the frame's data.
 cv::Mat toBgr8(const cv::Mat& frame);
 
 // toBgr8(frame) written into `bgr`, whose buffer is reused when it has the frame's size.

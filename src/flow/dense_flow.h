@@ -15,7 +15,7 @@ class DenseFlow {
 
   // Writes the flow of `grey` (8-bit, continuous) to the previous frame given into *flow:
   // current(p) matches previous(p + flow(p)); CV_32FC2 of grey's size, or empty for a first
-  // frame (or one of another size). `grey` and *flow are read again by the next call (the next
+  // frame (or one of another size, or one under 16 pixels a side). `grey` and *flow are read again by the next call (the next
   // frame is matched against `grey`, starting from *flow), so the caller keeps them unchanged
   // until then; the buffers are the caller's, so that two frames can be in flight.
   void next(const cv::Mat& grey, cv::Mat* flow);

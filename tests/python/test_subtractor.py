@@ -1,4 +1,5 @@
-"""movseg.createMovingCameraSubtractor: cv2.BackgroundSubtractor's calls, the Segmenter's masks."""
+"""movseg.createMovingCameraSubtractor: a cv2.BackgroundSubtractor, the Segmenter's masks."""
+import cv2
 import numpy as np
 import pytest
 
@@ -22,9 +23,17 @@ def test_apply_fills_fgmask_and_ignores_the_learning_rate(frames, cli_masks):
         assert np.array_equal(fgmask, cli_masks[index]), f"frame {index}"
 
 
-def test_bad_fgmask_or_frame_raise_value_error(frames):
+def test_a_bad_frame_raises_cv2_error_as_mog2s_apply_does():
     subtractor = movseg.createMovingCameraSubtractor()
-    with pytest.raises(ValueError):
-        subtractor.apply(frames[0], np.empty((3, 3), np.uint8))
-    with pytest.raises(ValueError):
+    with pytest.raises(cv2.error, match="unsupported channel count"):
         subtractor.apply(np.zeros((4, 4, 2), np.uint8))
+
+
+def test_is_a_cv2_background_subtractor_whose_methods_all_run(frames):
+    subtractor = movseg.createMovingCameraSubtractor(movseg.Params(method="diff"))
+    assert type(subtractor) is cv2.BackgroundSubtractor
+    for frame in frames[:3]:
+        subtractor.apply(frame)
+    subtractor.clear()  # forgets the stream: the next frame is a first frame
+    assert not subtractor.apply(frames[3]).any()
+    assert not subtractor.empty() and subtractor.getDefaultName()
