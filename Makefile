@@ -8,12 +8,14 @@ ASAN_DIR ?= build-asan
 FUZZ_DIR ?= build-fuzz
 TSAN_DIR ?= build-tsan
 FUZZ_SECONDS ?= 60
+# `make deb` builds the Debian package in a build configured for /usr.
+DEB_DIR ?= build-deb
 # -O1: sanitized code stays fast and its stack traces readable. No -DNDEBUG: asserts are on.
 comma := ,
 SANITIZE_FLAGS = -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" \
   -DMOVSEG_SANITIZE=address,undefined -DMOVSEG_BUILD_BENCH=OFF
 
-.PHONY: all build deps run test test-sanitize test-fuzz test-tsan bench long-run clean
+.PHONY: all build deps run test test-sanitize test-fuzz test-tsan deb test-deb bench long-run clean
 
 all: build
 
@@ -31,9 +33,22 @@ run: deps
 test: deps
 	@$(MAKE) --no-print-directory build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+	@$(MAKE) --no-print-directory test-deb
 	@$(MAKE) --no-print-directory test-fuzz
 	@$(MAKE) --no-print-directory test-sanitize
 	@$(MAKE) --no-print-directory test-tsan
+
+# The Debian package (CPack): library, headers, CMake package, pkg-config, CLI, Python module,
+# GStreamer element; dependencies from dpkg-shlibdeps. Written to $(DEB_DIR)/movseg_*.deb.
+deb: deps
+	@cmake -S . -B $(DEB_DIR) -DCMAKE_BUILD_TYPE=Release -DCMAKE_INSTALL_PREFIX=/usr \
+	  -DMOVSEG_BUILD_TESTS=OFF -DMOVSEG_BUILD_BENCH=OFF >/dev/null
+	@cmake --build $(DEB_DIR) -j $(JOBS)
+	@cd $(DEB_DIR) && rm -f movseg_*.deb && cpack -G DEB >/dev/null && ls movseg_*.deb
+
+# The package unpacked into a scratch root (dpkg -x): its CLI, Python module and element run.
+test-deb: deb
+	@bash tests/install/deb_test.sh $(DEB_DIR)/movseg_*.deb
 
 # The whole test suite built with AddressSanitizer and UndefinedBehaviorSanitizer; the first
 # report aborts its test.
@@ -74,4 +89,4 @@ long-run: deps
 	@$(BUILD_DIR)/bench/movseg_long_run
 
 clean:
-	@rm -rf $(BUILD_DIR) $(ASAN_DIR) $(FUZZ_DIR) $(TSAN_DIR)
+	@rm -rf $(BUILD_DIR) $(ASAN_DIR) $(FUZZ_DIR) $(TSAN_DIR) $(DEB_DIR)

@@ -1,6 +1,7 @@
-// movseg bench DATA [--methods paper,diff,mog2,mog2-comp] [--size WxH] [--json FILE]
+// movseg bench DATA [--methods paper,diff,mog2,mog2-comp] [--size WxH] [--json FILE] [--html FILE]
 // Every method on every sequence of DATA: accuracy against the ground truth and speed, in one
 // table (the README's tables come from here).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -9,12 +10,14 @@
 #include <memory>
 #include <sstream>
 #include <stdexcept>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
 #include "eval/dataset.h"
+#include "html_report.h"
 #include "io/atomic_write.h"
 #include "movseg/fields.h"
 #include "params_options.h"
@@ -31,14 +34,27 @@ struct BenchOptions {
   std::vector<std::string> methods = enumNames<Method>();
   std::string size;  // "WxH" or empty (native)
   std::string json_file;
+  std::string html_file;
   Params params;
 };
+
+// Timed in every run beside the methods asked for: OpenCV's MOG2, the speed users compare with.
+constexpr const char* kReference = "mog2";
 
 struct BenchRow {
   std::string sequence, method;
   ScoreSummary score;
-  double ms_per_frame = 0;  // median process() wall time
+  double ms_per_frame = 0;      // median process() wall time
+  double faults_per_frame = 0;  // minor page faults of the whole run (reads, writes included)
+  double vs_reference = 0;      // ms_per_frame over kReference's on the same sequence(s)
+  ReportRun report;             // with --html only
 };
+
+long minorFaults() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_minflt;
+}
 
 cv::Size parseSize(const std::string& text) {
   if (text.empty()) return {};
@@ -71,42 +87,63 @@ BenchRow benchOne(const GtSequence& sequence, const std::string& method, const B
   setParam(&segment.params, "method", method);
   segment.quiet = true;
   segment.resize = parseSize(options.size);
+  const long faults = minorFaults();
   const SegmentSummary summary = runSegmentation(segment);
-  BenchRow row{sequence.name, method, summarize(scoreSequence(sequence, segment.output_dir)),
-               summary.frame_ms.median()};
+  const double faults_per_frame =
+      static_cast<double>(minorFaults() - faults) / std::max(summary.frames, 1);
+  const SequenceScore score = scoreSequence(sequence, segment.output_dir);
+  BenchRow row{sequence.name, method, summarize(score), summary.frame_ms.median(),
+               faults_per_frame, 0, {}};
+  if (!options.html_file.empty()) {
+    row.report = reportRun(sequence, score, segment.output_dir, method, row.ms_per_frame);
+  }
   fs::remove_all(segment.output_dir);
   return row;
 }
 
 std::string formatRows(const std::vector<BenchRow>& rows) {
   std::string text;
-  char line[200];
-  std::snprintf(line, sizeof line, "%-22s %-10s %6s %6s %8s %9s %8s\n", "sequence", "method",
-                "J", "F", "error %", "ms/frame", "fps");
+  char line[220];
+  std::snprintf(line, sizeof line, "%-22s %-10s %6s %6s %8s %9s %8s %9s %8s\n", "sequence",
+                "method", "J", "F", "error %", "ms/frame", "fps", "x mog2", "faults");
   text += line;
   for (const BenchRow& r : rows) {
-    std::snprintf(line, sizeof line, "%-22s %-10s %6.3f %6.3f %8.2f %9.2f %8.1f\n",
+    std::snprintf(line, sizeof line, "%-22s %-10s %6.3f %6.3f %8.2f %9.2f %8.1f %9.2f %8.1f\n",
                   r.sequence.c_str(), r.method.c_str(), r.score.j, r.score.f, r.score.error_rate,
-                  r.ms_per_frame, r.ms_per_frame > 0 ? 1000.0 / r.ms_per_frame : 0.0);
+                  r.ms_per_frame, r.ms_per_frame > 0 ? 1000.0 / r.ms_per_frame : 0.0,
+                  r.vs_reference, r.faults_per_frame);
     text += line;
   }
   return text;
 }
 
+// Each row's time over the reference's on the same sequence ("MEAN" rows: on the mean).
+void compareWithReference(std::vector<BenchRow>* rows) {
+  for (BenchRow& row : *rows) {
+    for (const BenchRow& reference : *rows) {
+      if (reference.method == kReference && reference.sequence == row.sequence &&
+          reference.ms_per_frame > 0) {
+        row.vs_reference = row.ms_per_frame / reference.ms_per_frame;
+      }
+    }
+  }
+}
+
 // One mean row per method, each sequence weighing the same.
-std::vector<BenchRow> meanRows(const std::vector<BenchRow>& rows, const BenchOptions& options) {
+std::vector<BenchRow> meanRows(const std::vector<BenchRow>& rows,
+                               const std::vector<std::string>& methods) {
   std::vector<BenchRow> means;
-  for (const std::string& method : options.methods) {
+  for (const std::string& method : methods) {
     std::vector<ScoreSummary> scores;
-    std::vector<double> ms;
+    double ms = 0, faults = 0;
     for (const BenchRow& r : rows) {
       if (r.method != method) continue;
       scores.push_back(r.score);
-      ms.push_back(r.ms_per_frame);
+      ms += r.ms_per_frame;
+      faults += r.faults_per_frame;
     }
-    double mean_ms = 0;
-    for (double m : ms) mean_ms += m / static_cast<double>(ms.size());
-    means.push_back({"MEAN", method, meanOverSequences(scores, "MEAN"), mean_ms});
+    const auto n = static_cast<double>(std::max<size_t>(scores.size(), 1));
+    means.push_back({"MEAN", method, meanOverSequences(scores, "MEAN"), ms / n, faults / n, 0, {}});
   }
   return means;
 }
@@ -116,7 +153,8 @@ nlohmann::json rowsJson(const std::vector<BenchRow>& rows) {
   for (const BenchRow& r : rows) {
     out.push_back({{"sequence", r.sequence}, {"method", r.method}, {"frames", r.score.frames},
                    {"J", r.score.j}, {"J_recall", r.score.j_recall}, {"F", r.score.f},
-                   {"error_rate", r.score.error_rate}, {"ms_per_frame", r.ms_per_frame}});
+                   {"error_rate", r.score.error_rate}, {"ms_per_frame", r.ms_per_frame},
+                   {"faults_per_frame", r.faults_per_frame}});
   }
   return out;
 }
@@ -131,28 +169,42 @@ void runBench(const BenchOptions& options) {
   }
   const std::string scratch =
       (fs::temp_directory_path() / ("movseg-bench-" + std::to_string(::getpid()))).string();
+  std::vector<std::string> methods = options.methods;
+  if (std::find(methods.begin(), methods.end(), kReference) == methods.end()) {
+    methods.push_back(kReference);
+  }
   std::vector<BenchRow> rows;
-  Progress progress("bench", static_cast<int>(sequences.size() * options.methods.size()), false,
-                    "runs");
+  Progress progress("bench", static_cast<int>(sequences.size() * methods.size()), false, "runs");
   for (const GtSequence& sequence : sequences) {
-    for (const std::string& method : options.methods) {
+    for (const std::string& method : methods) {
       rows.push_back(benchOne(sequence, method, options, scratch));
       progress.update(static_cast<int>(rows.size()));
     }
   }
   progress.finish();
   fs::remove_all(scratch);
-  const std::vector<BenchRow> means = meanRows(rows, options);
-  std::cout << "movseg bench on " << cpuModel() << ", one thread"
-            << (options.size.empty() ? ", native size" : ", frames resized to " + options.size)
-            << "\n" << formatRows(rows) << formatRows(means).substr(formatRows({}).size())
+  std::vector<BenchRow> means = meanRows(rows, methods);
+  compareWithReference(&rows);
+  compareWithReference(&means);
+  const std::string setting =
+      "movseg bench on " + cpuModel() + ", one thread" +
+      (options.size.empty() ? ", native size" : ", frames resized to " + options.size);
+  std::cout << setting << "\n"
+            << formatRows(rows) << formatRows(means).substr(formatRows({}).size())
             << "J, F, error: means over frames after the first of each sequence (it has no "
                "previous frame); MEAN rows: each sequence weighs the same; ms/frame: median "
-               "per-frame time of the method (MEAN: mean of the medians).\n";
+               "per-frame time of the method (MEAN: mean of the medians); x mog2: over OpenCV "
+               "MOG2's, timed in the same run; faults: minor page faults per frame of the whole "
+               "run (reading and writing included).\n";
   if (!options.json_file.empty()) {
     const nlohmann::json report{{"cpu", cpuModel()}, {"size", options.size},
                                 {"rows", rowsJson(rows)}, {"means", rowsJson(means)}};
     writeTextAtomic(options.json_file, report.dump(2) + "\n");
+  }
+  if (!options.html_file.empty()) {
+    std::vector<ReportRun> runs;
+    for (const BenchRow& row : rows) runs.push_back(row.report);
+    writeHtmlReport(options.html_file, "movseg bench: " + options.data, setting, runs);
   }
 }
 
@@ -170,6 +222,8 @@ void addBenchCommand(CLI::App& app) {
       ->check(CLI::IsMember(enumNames<Method>()));
   cmd->add_option("--size", options->size, "Resize frames to WxH before segmenting");
   cmd->add_option("--json", options->json_file, "Write the table as JSON");
+  cmd->add_option("--html", options->html_file,
+                  "Write a report page: the table, charts of J, each sequence's worst frames");
   addParamsOptions(cmd, &options->params, {"method"});
   cmd->callback([options] { runBench(*options); });
 }

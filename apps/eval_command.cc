@@ -1,4 +1,5 @@
 // movseg eval PRED GT [--format auto|plain|davis|segtrack|cdnet] [--json FILE] [--csv FILE]
+//             [--html FILE]
 // (metrics and layouts: src/eval/, docs/metrics.md)
 #include <filesystem>
 #include <iostream>
@@ -9,6 +10,7 @@
 
 #include "commands.h"
 #include "eval/dataset.h"
+#include "html_report.h"
 #include "io/atomic_write.h"
 
 namespace movseg::cli {
@@ -20,6 +22,7 @@ struct EvalOptions {
   std::string format = "auto";  // a key of gtFormatNames()
   std::string json_file;
   std::string csv_file;
+  std::string html_file;
 };
 
 // "2 davis sequences", "1 cdnet sequence, 1 plain sequence".
@@ -54,6 +57,48 @@ void requireCountedFrames(const std::vector<GtSequence>& sequences,
                            "' has no ground-truth frame to score besides its first");
 }
 
+// `movseg eval GT PRED` by mistake would score the ground truth against the predictions without
+// a word. A prediction folder holds masks only; a ground-truth sequence comes with its video's
+// frames: when PRED has them and GT does not, the two are swapped.
+void rejectSwappedArguments(const EvalOptions& options, const std::vector<GtSequence>& truth) {
+  for (const GtSequence& sequence : truth) {
+    if (!sequence.video_frames.empty()) return;
+  }
+  std::vector<GtSequence> pred_as_truth;
+  try {
+    pred_as_truth = loadGroundTruth(options.pred, GtFormat::kAuto);
+  } catch (const std::runtime_error&) {
+    return;  // not ground truth at all
+  }
+  for (const GtSequence& sequence : pred_as_truth) {
+    if (sequence.video_frames.empty()) continue;
+    throw std::runtime_error("PRED '" + options.pred +
+                             "' holds video frames and masks, like ground truth, and GT '" +
+                             options.gt +
+                             "' masks only: are they swapped? The order is movseg eval PRED GT");
+  }
+}
+
+// "out" for "runs/out/": the prediction folder's own name labels its scores in the report.
+std::string folderLabel(const std::string& path) {
+  std::filesystem::path folder = std::filesystem::path(path).lexically_normal();
+  if (folder.filename().empty()) folder = folder.parent_path();
+  return folder.filename().string();
+}
+
+void writeReport(const EvalOptions& options, const std::vector<GtSequence>& sequences,
+                 const std::vector<SequenceScore>& scores) {
+  std::vector<ReportRun> runs;
+  for (size_t i = 0; i < sequences.size(); ++i) {
+    runs.push_back(reportRun(sequences[i], scores[i], predictionDir(sequences[i], options.pred),
+                             folderLabel(options.pred), -1));
+  }
+  writeHtmlReport(options.html_file, "movseg eval: " + options.pred,
+                  "predictions '" + options.pred + "' against the ground truth '" + options.gt +
+                      "'",
+                  runs);
+}
+
 void runEval(const EvalOptions& options) {
   std::error_code error;
   if (!std::filesystem::is_directory(options.pred, error)) {
@@ -61,12 +106,14 @@ void runEval(const EvalOptions& options) {
   }
   const std::vector<GtSequence> sequences =
       loadGroundTruth(options.gt, gtFormatNames().at(options.format));
+  rejectSwappedArguments(options, sequences);
   const std::vector<SequenceScore> scores = scoreDataset(sequences, options.pred);
   std::cout << "eval: " << describeGroundTruth(sequences) << " in '" << options.gt << "'\n"
             << formatScoreTable(scores);
   requireCountedFrames(sequences, scores, options.pred);
   if (!options.csv_file.empty()) writeTextAtomic(options.csv_file, scoresCsv(scores));
   if (!options.json_file.empty()) writeTextAtomic(options.json_file, scoresJson(scores));
+  if (!options.html_file.empty()) writeReport(options, sequences, scores);
 }
 
 }  // namespace
@@ -88,6 +135,8 @@ void addEvalCommand(CLI::App& app) {
       ->check(CLI::IsMember(formats))
       ->capture_default_str();
   cmd->add_option("--json", options->json_file, "Per-sequence means and per-frame scores as JSON");
+  cmd->add_option("--html", options->html_file,
+                  "Write a report page: the table, charts of J, each sequence's worst frames");
   cmd->add_option("--csv", options->csv_file,
                   "Per-frame scores: sequence,frame,J,F,error_rate,precision,recall,f1");
   cmd->callback([options] { runEval(*options); });

@@ -1,4 +1,6 @@
 // build/movseg: segment moving objects, make synthetic test video, evaluate and benchmark.
+#include <malloc.h>
+
 #include <csignal>
 #include <cstdlib>
 #include <exception>
@@ -36,13 +38,25 @@ int fail(int code, const std::exception& e) {
   return code;
 }
 
+// Per-frame buffers of a few hundred kilobytes would otherwise be mapped from the kernel and
+// given back on every frame (glibc serves large blocks with mmap and trims the heap's top), and
+// faulting their pages in again cost a third of a run's time on a VM (docs/design.md). Kept in
+// the heap, they are reused. The library leaves the process's allocator alone; programs that
+// call it can do the same, or set GLIBC_TUNABLES.
+void keepLargeBlocksInTheHeap() {
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest
+  mallopt(M_TRIM_THRESHOLD, 512 << 20);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  keepLargeBlocksInTheHeap();
   quietLibraries();
   reportFailedWrites();
   cv::setNumThreads(1);  // per-frame work is small; one core per stream is the design point
   CLI::App app{"movseg: moving object segmentation for freely moving cameras"};
+  app.set_version_flag("--version", "movseg " MOVSEG_VERSION);
   app.require_subcommand(1);
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
     return "movseg: error: " + oneLine(e.what()) + "\n";

@@ -44,8 +44,8 @@ struct StageInputs {
   explicit StageInputs(const Pair& pair) {
     tracker.advance(pair.prev.clone());
     step = tracker.advance(pair.cur.clone());
-    prev = step.previous;
-    cur = step.current;
+    prev = step.previous.get();
+    cur = step.current.get();
     const PreparedFrame& image = cur->image;
     difference = compensatedDifference(prev->image.seg_smooth, image.seg_smooth,
                                        rescaleModel(step.model, image.seg_scale));

@@ -126,13 +126,24 @@ cv::Mat fuzzedPicture(FuzzInput& in, cv::Size size) {
   return picture;
 }
 
+// Float frames must lie in [0, 1] (NaN counts as 0).
+bool inUnitRangeIfFloat(const cv::Mat& frame) {
+  if (frame.depth() != CV_32F && frame.depth() != CV_64F) return true;
+  cv::Mat real;
+  frame.convertTo(real, CV_32F);
+  cv::patchNaNs(real, 0.0);
+  double low = 0, high = 0;
+  cv::minMaxLoc(real.reshape(1), &low, &high);
+  return low >= 0 && high <= 1;
+}
+
 // Every depth toBgr8 converts, and two it must reject (32S, 16F).
 const int kDepths[] = {CV_8U, CV_8S, CV_16U, CV_16S, CV_32F, CV_64F, CV_32S, CV_16F};
 
 bool supported(const cv::Mat& frame) {
   const int channels = frame.channels();
   return frame.depth() != CV_32S && frame.depth() != CV_16F &&
-         (channels == 1 || channels == 3 || channels == 4);
+         (channels == 1 || channels == 3 || channels == 4) && inUnitRangeIfFloat(frame);
 }
 
 // `picture` in the given depth and channel count, spanning that depth's range.

@@ -14,6 +14,12 @@ PACKAGES=(
   libgtest-dev libgmock-dev             # unit tests
   libbenchmark-dev                      # bench/
   pybind11-dev python3-dev python3-numpy python3-opencv python3-pytest  # Python module
+  python3-mypy                          # checks the Python type stubs
+  python3-distributed                   # python3 -m movseg batch (Dask)
+  libgstreamer1.0-dev libgstreamer-plugins-base1.0-dev  # the GStreamer element
+  gstreamer1.0-tools gstreamer1.0-plugins-base gstreamer1.0-plugins-good  # ... and its tests
+  chromium                              # renders the HTML report in its test
+  dpkg-dev fakeroot file                # make deb (CPack: dpkg-shlibdeps)
   clang libclang-rt-14-dev              # libFuzzer and sanitizer runtimes
 )
 
@@ -21,6 +27,9 @@ missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
+# npm installs the HTML report's charting library into the build tree (report/package.json).
+# Any npm will do: NodeSource's nodejs package carries its own, Debian's is the npm package.
+command -v npm >/dev/null || missing+=(npm)
 
 if [ ${#missing[@]} -eq 0 ]; then
   exit 0

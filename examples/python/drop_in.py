@@ -5,7 +5,7 @@ Usage: python3 drop_in.py INPUT   (INPUT: video file, stream URL, or frames/%05d
 import sys
 
 import cv2
-import movseg
+import movseg  # built for one interpreter: /usr/bin/python3 unless the build chose another
 
 video = cv2.VideoCapture(sys.argv[1])
 # Was: subtractor = cv2.createBackgroundSubtractorMOG2()

@@ -5,7 +5,7 @@ Usage: python3 segment_video.py INPUT OUTDIR   (INPUT: video file, stream URL, o
 import sys
 
 import cv2
-import movseg
+import movseg  # built for one interpreter: /usr/bin/python3 unless the build chose another
 
 video = cv2.VideoCapture(sys.argv[1])
 # Any field of include/movseg/params.def by name; static_camera=True suits a fixed camera.

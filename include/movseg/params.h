@@ -12,6 +12,7 @@ enum class Method {
   kDiff,             // "diff": the compensated difference thresholded by eq. (3)
   kMog2,             // "mog2": OpenCV's MOG2, no camera compensation
   kMog2Compensated,  // "mog2-comp": MOG2 in a frame stabilised by §3.1's camera model
+  kDense,            // "dense": dense residual motion with memory and colour (movseg's own)
 };
 
 // The frame-to-frame camera model of §3.1.

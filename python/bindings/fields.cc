@@ -1,5 +1,7 @@
 #include "fields.h"
 
+#include <pybind11/stl.h>
+
 namespace py = pybind11;
 
 namespace movseg::python {
@@ -24,6 +26,32 @@ py::array_t<double> matrixArray(const cv::Matx33d& m) {
     for (int c = 0; c < 3; ++c) out(r, c) = m(r, c);
   }
   return array;
+}
+
+namespace {
+
+const char* pythonType(FieldType type) {
+  switch (type) {
+    case FieldType::kBool: return "bool";
+    case FieldType::kInt:
+    case FieldType::kUnsigned: return "int";
+    case FieldType::kReal: return "float";
+    case FieldType::kChoice: return "str";
+    case FieldType::kMatrix: break;
+  }
+  return "matrix";
+}
+
+}  // namespace
+
+pybind11::list fieldTable(const std::vector<FieldInfo>& fields) {
+  py::list table;
+  for (const FieldInfo& field : fields) {
+    table.append(py::dict(py::arg("name") = pythonName(field.name),
+                          py::arg("type") = pythonType(field.type),
+                          py::arg("choices") = field.choices, py::arg("doc") = helpText(field)));
+  }
+  return table;
 }
 
 std::string reprOf(const py::object& object, const std::string& type,

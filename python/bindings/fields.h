@@ -34,6 +34,10 @@ pybind11::object toPython(const T& value) {
   }
 }
 
+// The table as a list of dicts {name (Python's), type ("bool", "int", "float", "str" or
+// "matrix"), choices, doc}, for python/tools/stubgen.py.
+pybind11::list fieldTable(const std::vector<FieldInfo>& fields);
+
 // "movseg.Name(\n    field=repr,\n    ...)" over every field of the table, one per line.
 std::string reprOf(const pybind11::object& object, const std::string& type,
                    const std::vector<FieldInfo>& fields);

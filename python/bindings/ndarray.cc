@@ -112,6 +112,20 @@ cv::Mat matFromArray(const py::array& input) {
   return mat;
 }
 
+cv::Mat frameFromArray(const py::object& frame, bool rgb) {
+  if (!py::isinstance<py::array>(frame)) {
+    throw py::type_error("expected the frame as a numpy array (HxW, HxWx3 or HxWx4), got " +
+                         py::str(py::type::of(frame).attr("__name__")).cast<std::string>());
+  }
+  const cv::Mat mat = matFromArray(frame.cast<py::array>());
+  if (!rgb || (mat.channels() != 3 && mat.channels() != 4)) return mat;
+  // Channels 0 and 2 swap places; alpha stays. mixChannels takes every depth.
+  cv::Mat bgr(mat.size(), mat.type());
+  const int from_to[] = {0, 2, 1, 1, 2, 0, 3, 3};
+  cv::mixChannels(&mat, 1, &bgr, 1, from_to, static_cast<size_t>(mat.channels()));
+  return bgr;
+}
+
 py::object arrayFromMat(const cv::Mat& mat) {
   if (mat.empty()) return py::none();
   auto* owner = new cv::Mat(mat);

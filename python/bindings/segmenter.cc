@@ -1,5 +1,4 @@
 // movseg.Segmenter, and movseg.createMovingCameraSubtractor for code written for cv2's MOG2.
-#include <cstdint>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
@@ -33,42 +32,34 @@ struct Guarded {
 };
 
 using PySegmenter = Guarded<Segmenter>;
-using PySubtractor = Guarded<cv::Ptr<cv::BackgroundSubtractor>>;
 
-Result process(PySegmenter& segmenter, const py::array& frame) {
-  const cv::Mat mat = matFromArray(frame);
+Result process(PySegmenter& segmenter, const py::object& frame, bool rgb) {
+  const cv::Mat mat = frameFromArray(frame, rgb);
   return segmenter.run([&](Segmenter& s) { return s.process(mat); });
 }
 
-// cv2's BackgroundSubtractor.apply(image[, fgmask[, learningRate]]) -> fgmask.
-py::object apply(PySubtractor& subtractor, const py::array& image, const py::object& fgmask,
-                 double learning_rate) {
-  const cv::Mat frame = matFromArray(image);
-  const cv::Mat mask = subtractor.run([&](cv::Ptr<cv::BackgroundSubtractor>& s) {
-    cv::Mat out;
-    s->apply(frame, out, learning_rate);
-    return out;
-  });
-  if (fgmask.is_none()) return arrayFromMat(mask);
-  if (!py::isinstance<py::array>(fgmask) || !fgmask.cast<py::array>().writeable()) {
-    throw std::invalid_argument("fgmask must be a writeable numpy array");
-  }
-  const auto out = fgmask.cast<py::array>();
-  if (out.ndim() != 2 || !py::isinstance<py::array_t<std::uint8_t>>(out) ||
-      out.shape(0) != mask.rows || out.shape(1) != mask.cols) {
-    throw std::invalid_argument("fgmask must be an HxW uint8 array of the frame's size");
-  }
-  // numpy writes in place whatever the array's strides (a view, Fortran order).
-  out.attr("__setitem__")(py::ellipsis(), arrayFromMat(mask));
-  return fgmask;
-}
+// A cv2.BackgroundSubtractor object as OpenCV's Python module lays it out (CVPY_TYPE_DECLARE in
+// its modules/python/src2/pycompat.hpp): the object header, then the class's C++ object.
+struct Cv2Subtractor {
+  PyObject_HEAD
+  cv::Ptr<cv::BackgroundSubtractor> object;
+};
 
-py::object backgroundImage(PySubtractor& subtractor) {
-  return arrayFromMat(subtractor.run([](cv::Ptr<cv::BackgroundSubtractor>& s) {
-    cv::Mat background;
-    s->getBackgroundImage(background);
-    return background;
-  }));
+// A cv2.BackgroundSubtractor running movseg's subtractor: cv2's own object, whose C++ object is
+// ours, so isinstance(s, cv2.BackgroundSubtractor) holds and every method (apply,
+// getBackgroundImage, clear, ...) is cv2's, with cv2's conversions and errors, calling ours, as
+// for MOG2. A Python subclass of cv2's class cannot do this: cv2 frees its objects as objects
+// the garbage collector does not track, and every instance of a Python subclass is tracked, so
+// it crashes when freed (measured: OpenCV 4.6, Python 3.11).
+py::object movingCameraSubtractor(const Params& params) {
+  py::object subtractor = py::module_::import("cv2").attr("BackgroundSubtractor")();
+  PyTypeObject* type = Py_TYPE(subtractor.ptr());
+  if (type->tp_basicsize != static_cast<Py_ssize_t>(sizeof(Cv2Subtractor))) {
+    throw std::runtime_error("this cv2 lays out cv2.BackgroundSubtractor unlike OpenCV 4 does: "
+                             "use movseg.Segmenter");
+  }
+  reinterpret_cast<Cv2Subtractor*>(subtractor.ptr())->object = createMovingCameraSubtractor(params);
+  return subtractor;
 }
 
 }  // namespace
@@ -80,10 +71,13 @@ void bindSegmenter(py::module_& module) {
                           "stream.")
       .def(py::init([](const Params& p) { return std::make_unique<PySegmenter>(Segmenter(p)); }),
            py::arg("params") = Params(), "Raises ValueError when the parameters are out of range.")
-      .def("process", &process, py::arg("frame"),
-           "Takes the next frame (HxWx3 BGR as cv2 reads it, HxW grey or HxWx4 BGRA; uint8 or "
-           "uint16) and returns its Result. The first frame's mask is empty. Raises ValueError "
-           "for an empty frame or an unsupported shape or dtype.")
+      .def("process", &process, py::arg("frame"), py::kw_only(), py::arg("rgb") = false,
+           "Takes the next frame, a numpy array: HxWx3 BGR as cv2 reads it, HxW grey or HxWx4 "
+           "BGRA; with rgb=True, HxWx3 RGB or HxWx4 RGBA as PIL and imageio give them. uint8, "
+           "uint16, int8, int16, or float32 / float64 with values in [0, 1] (a float frame in "
+           "0-255 raises ValueError: pass uint8 or divide by 255). Returns its Result; the first "
+           "frame's mask is empty. Raises ValueError for an empty frame or an unsupported shape, "
+           "dtype or value range, TypeError for anything but a numpy array.")
       .def("reset", [](PySegmenter& s) { s.run([](Segmenter& segmenter) { segmenter.reset(); }); },
            "Forgets the previous frame.")
       .def("compensated_previous_frame",
@@ -101,22 +95,12 @@ void bindSegmenter(py::module_& module) {
           },
           "A copy of the parameters.");
 
-  py::class_<PySubtractor>(
-      module, "BackgroundSubtractor",
-      "cv2.BackgroundSubtractor's interface over a Segmenter (see createMovingCameraSubtractor).")
-      .def("apply", &apply, py::arg("image"), py::arg("fgmask") = py::none(),
-           py::arg("learningRate") = -1.0,
-           "Segments the next frame and returns its HxW uint8 mask (0 / 255), written into "
-           "fgmask when one is given. learningRate is ignored: there is no background model.")
-      .def("getBackgroundImage", &backgroundImage,
-           "The previous frame warped onto the last one; None before the second frame.");
-  module.def(
-      "createMovingCameraSubtractor",
-      [](const Params& params) {
-        return std::make_unique<PySubtractor>(createMovingCameraSubtractor(params));
-      },
-      py::arg("params") = Params(),
-      "Drop-in for cv2.createBackgroundSubtractorMOG2() when the camera moves.");
+  module.def("createMovingCameraSubtractor", &movingCameraSubtractor, py::arg("params") = Params(),
+             "Drop-in for cv2.createBackgroundSubtractorMOG2() when the camera moves: a "
+             "cv2.BackgroundSubtractor whose apply(image[, fgmask[, learningRate]]) segments the "
+             "next frame (BGR, grey or BGRA, as cv2 reads them) and returns its mask, "
+             "getBackgroundImage() gives the previous frame warped onto the last one and clear() "
+             "forgets the stream. learningRate is ignored. Use one per stream.");
 }
 
 }  // namespace movseg::python

@@ -6,18 +6,29 @@
 
 `python3 -m movseg ...` runs the movseg command-line tool. docs/usage.md has more.
 """
-from ._movseg import (
-    BackgroundSubtractor,
-    Diagnostics,
-    Params,
-    Result,
-    Segmenter,
-    __version__,
-    createMovingCameraSubtractor,
-)
+import sys
+
+from ._build_info import PYTHON
+
+try:
+    import numpy  # noqa: F401 (the extension loads it only when it first converts an array)
+
+    from ._movseg import (
+        Diagnostics,
+        Params,
+        Result,
+        Segmenter,
+        __version__,
+        createMovingCameraSubtractor,
+    )
+except ImportError as error:
+    # The extension is compiled for one interpreter and uses its numpy (and cv2); another
+    # python3 found first on PATH (pyenv, a virtualenv) would fail here with a riddle.
+    raise ImportError(
+        f"movseg is built for {PYTHON} with its numpy and cv2 (Debian: python3-numpy, "
+        f"python3-opencv); this is {sys.executable}, where it fails: {error}") from error
 
 __all__ = [
-    "BackgroundSubtractor",
     "Diagnostics",
     "Params",
     "Result",

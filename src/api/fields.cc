@@ -13,7 +13,7 @@ namespace movseg {
 
 template <>
 const std::vector<std::string>& enumNames<Method>() {
-  static const std::vector<std::string> names{"paper", "diff", "mog2", "mog2-comp"};
+  static const std::vector<std::string> names{"paper", "diff", "mog2", "mog2-comp", "dense"};
   return names;
 }
 

@@ -2,18 +2,35 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
 #include <opencv2/imgproc.hpp>
 
 namespace movseg {
+namespace {
 
-cv::Mat toBgr8(const cv::Mat& frame) {
-  if (frame.empty()) throw std::invalid_argument("empty frame");
+// A float frame in 0-255 (what cv2 or numpy arithmetic on 8-bit frames gives) would saturate
+// to white and give an empty mask without a word: refuse it, saying what is expected.
+void requireUnitRange(const cv::Mat& real) {
+  double low = 0, high = 0;
+  cv::minMaxLoc(real.reshape(1), &low, &high);
+  if (low < 0 || high > 1) {
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "float frame values must be in [0, 1], got [%g, %g] (for 0-255, pass 8-bit "
+                  "pixels or divide by 255)",
+                  low, high);
+    throw std::invalid_argument(text);
+  }
+}
+
+// 8-bit, any channel count: the depth conversion of toBgr8.
+cv::Mat eightBit(const cv::Mat& frame) {
   cv::Mat eight;
   switch (frame.depth()) {
-    case CV_8U: eight = frame; break;
+    case CV_8U: return frame;
     case CV_8S: frame.convertTo(eight, CV_8U, 1.0, 128.0); break;
     case CV_16U: frame.convertTo(eight, CV_8U, 1.0 / 256.0); break;
     case CV_16S: frame.convertTo(eight, CV_8U, 1.0 / 256.0, 128.0); break;
@@ -22,22 +39,49 @@ cv::Mat toBgr8(const cv::Mat& frame) {
       cv::Mat finite;
       frame.convertTo(finite, CV_32F);  // patchNaNs takes 32-bit floats only
       cv::patchNaNs(finite, 0.0);       // NaN would otherwise become an arbitrary byte
+      requireUnitRange(finite);
       finite.convertTo(eight, CV_8U, 255.0);
       break;
     }
     default:
       throw std::invalid_argument("unsupported pixel depth");
   }
-  cv::Mat bgr;
-  switch (eight.channels()) {
-    case 1: cv::cvtColor(eight, bgr, cv::COLOR_GRAY2BGR); break;
-    case 3: bgr = eight; break;
-    case 4: cv::cvtColor(eight, bgr, cv::COLOR_BGRA2BGR); break;
-    default:
-      throw std::invalid_argument("unsupported channel count " + std::to_string(eight.channels()) +
-                                  " (expected 1, 3 or 4)");
+  return eight;
+}
+
+}  // namespace
+
+void toBgr8(const cv::Mat& frame, cv::Mat* bgr) {
+  if (frame.empty()) throw std::invalid_argument("empty frame");
+  if (frame.channels() != 1 && frame.channels() != 3 && frame.channels() != 4) {
+    throw std::invalid_argument("unsupported channel count " + std::to_string(frame.channels()) +
+                                " (expected 1, 3 or 4)");
   }
+  const cv::Mat eight = eightBit(frame);
+  switch (eight.channels()) {
+    case 1: cv::cvtColor(eight, *bgr, cv::COLOR_GRAY2BGR); break;
+    case 3: eight.copyTo(*bgr); break;
+    default: cv::cvtColor(eight, *bgr, cv::COLOR_BGRA2BGR); break;
+  }
+}
+
+cv::Mat toBgr8(const cv::Mat& frame) {
+  if (frame.type() == CV_8UC3) return frame;
+  cv::Mat bgr;
+  toBgr8(frame, &bgr);
   return bgr;
+}
+
+cv::Mat FramePool::take(cv::Size size, int type) {
+  for (cv::Mat& buffer : buffers_) {
+    // Read atomically: another thread may be dropping its reference right now.
+    if (buffer.u != nullptr && CV_XADD(&buffer.u->refcount, 0) != 1) continue;
+    buffer.create(size, type);
+    return buffer;
+  }
+  cv::Mat buffer(size, type);
+  if (buffers_.size() < kMaxBuffers) buffers_.push_back(buffer);
+  return buffer;
 }
 
 cv::Mat resizedTo(const cv::Mat& image, cv::Size size) {
@@ -45,6 +89,19 @@ cv::Mat resizedTo(const cv::Mat& image, cv::Size size) {
   cv::Mat out;
   cv::resize(image, out, size, 0, 0, cv::INTER_AREA);
   return out;
+}
+
+void downscale(const cv::Mat& image, cv::Size size, cv::Mat* halved, cv::Mat* out) {
+  const cv::Mat* source = &image;
+  while (source->cols >= 2 * size.width && source->rows >= 2 * size.height) {
+    cv::resize(*source, *halved, cv::Size(source->cols / 2, source->rows / 2), 0, 0, cv::INTER_AREA);
+    source = halved;
+  }
+  if (source->size() == size) {
+    source->copyTo(*out);
+  } else {
+    cv::resize(*source, *out, size, 0, 0, cv::INTER_LINEAR);
+  }
 }
 
 cv::Size scaledSize(cv::Size size, int width) {

@@ -10,12 +10,34 @@
 namespace movseg {
 
 // Converts any supported frame to 8-bit BGR: grey and BGRA are converted, 16-bit is scaled by
-// 1/256, float frames are read as [0, 1]. Throws std::invalid_argument for an empty frame or
-// an unsupported channel count.
+// 1/256, float frames are read as [0, 1] (NaN as 0). Throws std::invalid_argument for an empty
+// frame, an unsupported channel count, or a float frame with a value outside [0, 1]. The result
+// may share the frame's data.
 cv::Mat toBgr8(const cv::Mat& frame);
+
+// toBgr8(frame) written into `bgr`, whose buffer is reused when it has the frame's size.
+void toBgr8(const cv::Mat& frame, cv::Mat* bgr);
+
+// Buffers for frames a pipeline keeps beyond the call that gave them: a buffer is handed out
+// again once nothing but the pool refers to it, so a stream of frames of one size allocates
+// nothing after its first few frames.
+class FramePool {
+ public:
+  // A buffer of `size` and `type` that nobody else refers to.
+  cv::Mat take(cv::Size size, int type);
+
+ private:
+  static constexpr size_t kMaxBuffers = 8;  // beyond, frames are allocated one by one
+  std::vector<cv::Mat> buffers_;
+};
 
 // `image` resized to `size` (area interpolation); the same Mat when `size` is empty or equal.
 cv::Mat resizedTo(const cv::Mat& image, cv::Size size);
+
+// `image` scaled down to `size` into *out: halved by area averaging while it stays at least twice
+// as large (OpenCV's fast integer path), then interpolated. Nearly INTER_AREA's anti-aliasing at
+// a tenth of its cost for non-integer ratios (854 -> 320). `halved` is scratch.
+void downscale(const cv::Mat& image, cv::Size size, cv::Mat* halved, cv::Mat* out);
 
 // The size of `size` scaled to `width` (0 = unchanged), never upscaled, at least 1x1.
 cv::Size scaledSize(cv::Size size, int width);

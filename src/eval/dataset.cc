@@ -114,6 +114,16 @@ std::string folderName(const std::string& folder) {
   return path.filename().string();
 }
 
+// A mask folder given on its own is named after its sequence: "blackswan/masks" ->
+// "blackswan", as the layouts of GtFormat name their mask folders.
+std::string sequenceName(const std::string& folder, GtFormat format) {
+  const std::string name = folderName(folder);
+  const bool layout_mask_folder = name == "masks" || name == "ground-truth" ||
+                                  name == "GroundTruth" || name == "groundtruth";
+  if (format != GtFormat::kPlain || !layout_mask_folder) return name;
+  return folderName(join(folder, ".."));
+}
+
 void readTemporalRoi(const std::string& path, GtSequence* sequence) {
   std::ifstream in(path);
   int first = 0;
@@ -151,7 +161,7 @@ Folders foldersOf(const std::string& folder, GtFormat format) {
 
 GtSequence loadSequence(const std::string& folder, GtFormat format, bool in_dataset) {
   GtSequence sequence;
-  sequence.name = folderName(folder);
+  sequence.name = sequenceName(folder, format);
   sequence.format = format;
   sequence.in_dataset = in_dataset;
   const std::string roi_file = join(folder, "temporalROI.txt");

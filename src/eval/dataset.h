@@ -85,6 +85,11 @@ std::string predictionDir(const GtSequence& sequence, const std::string& pred_pa
 // mask cannot be read or a prediction's size differs from its ground truth's.
 SequenceScore scoreSequence(const GtSequence& sequence, const std::string& pred_dir);
 
+// The prediction file of each ground-truth frame of `sequence` that has one in `pred_dir`, by
+// frame number, matched as scoreSequence() matches them.
+std::map<int, std::string> matchPredictions(const GtSequence& sequence,
+                                            const std::string& pred_dir);
+
 // scoreSequence() of every sequence with its predictionDir().
 std::vector<SequenceScore> scoreDataset(const std::vector<GtSequence>& sequences,
                                         const std::string& pred_path);

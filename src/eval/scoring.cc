@@ -56,7 +56,26 @@ FrameScore scoreFiles(const GtSequence& sequence, const GtFrame& frame,
   return score;
 }
 
+// The prediction of each ground-truth frame that has one, by frame number.
+std::map<int, std::string> matched(const GtSequence& sequence,
+                                   const std::map<int, std::string>& predictions,
+                                   bool by_position) {
+  std::map<int, std::string> result;
+  for (const GtFrame& frame : sequence.frames) {
+    const auto prediction =
+        predictions.find(by_position ? positionOf(sequence, frame.index) : frame.index);
+    if (prediction != predictions.end()) result[frame.index] = prediction->second;
+  }
+  return result;
+}
+
 }  // namespace
+
+std::map<int, std::string> matchPredictions(const GtSequence& sequence,
+                                            const std::string& pred_dir) {
+  const std::map<int, std::string> predictions = numberedImages(pred_dir);
+  return matched(sequence, predictions, numberedByPosition(sequence, predictions));
+}
 
 SequenceScore scoreSequence(const GtSequence& sequence, const std::string& pred_dir) {
   const std::map<int, std::string> predictions = numberedImages(pred_dir);
@@ -64,10 +83,11 @@ SequenceScore scoreSequence(const GtSequence& sequence, const std::string& pred_
   score.name = sequence.name;
   score.first_frame = sequence.first_frame;
   score.matched_by_position = numberedByPosition(sequence, predictions);
+  const std::map<int, std::string> matches =
+      matched(sequence, predictions, score.matched_by_position);
   for (const GtFrame& frame : sequence.frames) {
-    const auto prediction = predictions.find(
-        score.matched_by_position ? positionOf(sequence, frame.index) : frame.index);
-    if (prediction != predictions.end()) {
+    const auto prediction = matches.find(frame.index);
+    if (prediction != matches.end()) {
       score.frames.push_back(scoreFiles(sequence, frame, prediction->second));
     } else if (frame.index != sequence.first_frame) {
       ++score.missing;

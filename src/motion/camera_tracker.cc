@@ -22,18 +22,20 @@ CameraTracker::CameraTracker(const Params& params) : params_(params) {}
 
 CameraTracker::Step CameraTracker::advance(const cv::Mat& bgr) {
   const Clock::time_point start = Clock::now();
-  if (current_) previous_ = std::move(current_);
-  TrackedFrame& current = current_.emplace();
-  current.image = prepareFrame(bgr, params_);
-  current.alignment = prepareAlignment(current.image.small_grey, params_);
+  auto frame = std::make_shared<TrackedFrame>();
+  frame->image = prepareFrame(bgr, params_);
+  frame->alignment = prepareAlignment(frame->image.small_grey, params_);
+  previous_ = std::move(current_);
+  current_ = frame;
+  const TrackedFrame& current = *frame;
   Step step;
-  step.current = &current;
+  step.current = current_;
   step.prepare_ms = millisecondsSince(start);
   if (!previous_) {
     warm_model_ = cv::Matx33d::eye();
     return step;
   }
-  step.previous = &*previous_;
+  step.previous = previous_;
   const Clock::time_point motion_start = Clock::now();
   if (!params_.static_camera) {
     step.motion = estimateCameraMotion(previous_->alignment, current.alignment, warm_model_,

@@ -4,7 +4,7 @@
 #pragma once
 
 #include <cstdint>
-#include <optional>
+#include <memory>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -27,8 +27,10 @@ class CameraTracker {
   explicit CameraTracker(const Params& params);
 
   struct Step {
-    const TrackedFrame* previous = nullptr;  // null on a first frame
-    const TrackedFrame* current = nullptr;
+    // Shared with the tracker, so that a step outlives the tracker's next one (a stream
+    // segments frame t while the tracker already aligns frame t+1).
+    std::shared_ptr<const TrackedFrame> previous;  // null on a first frame
+    std::shared_ptr<const TrackedFrame> current;
     MotionEstimate motion;                   // alignment scale; empty on a first frame
     cv::Matx33d model = cv::Matx33d::eye();  // motion.model in full-resolution pixels
     double prepare_ms = 0;                   // preparing the current frame
@@ -41,7 +43,7 @@ class CameraTracker {
   };
 
   // Takes the next frame (8-bit BGR; the tracker keeps it, so it must not be a buffer the
-  // caller refills). The returned pointers stay valid until the next call.
+  // caller refills).
   Step advance(const cv::Mat& bgr);
 
   // Forgets every frame: the next one is a first frame.
@@ -52,7 +54,7 @@ class CameraTracker {
 
  private:
   Params params_;
-  std::optional<TrackedFrame> previous_, current_;
+  std::shared_ptr<const TrackedFrame> previous_, current_;
   cv::Matx33d warm_model_ = cv::Matx33d::eye();  // alignment scale
   cv::Matx33d last_model_ = cv::Matx33d::eye();  // full resolution
   std::uint64_t pairs_ = 0;

@@ -6,8 +6,8 @@
 #include "motion/camera_tracker.h"
 #include "motion/model.h"
 #include "motion/motion_debug.h"
-#include "pipelines/motion_report.h"
 #include "pipelines/pipeline.h"
+#include "pipelines/tracked.h"
 
 namespace movseg {
 namespace {
@@ -16,8 +16,16 @@ class DiffPipeline : public Pipeline {
  public:
   explicit DiffPipeline(const Params& params) : params_(params), tracker_(params) {}
 
-  cv::Mat process(const cv::Mat& bgr, const DebugSink& debug, Result* result) override {
-    const CameraTracker::Step step = tracker_.advance(bgr);
+  std::unique_ptr<Analysis> newAnalysis() const override {
+    return std::make_unique<TrackedAnalysis>();
+  }
+
+  void analyse(const cv::Mat& bgr, Analysis* analysis) override {
+    analyseTracked(&tracker_, bgr, analysis);
+  }
+
+  cv::Mat segment(const Analysis& analysis, const DebugSink& debug, Result* result) override {
+    const CameraTracker::Step& step = static_cast<const TrackedAnalysis&>(analysis).step;
     Diagnostics& diag = result->diagnostics;
     describeMotion(step, &diag);
     const PreparedFrame& cur = step.current->image;

@@ -6,8 +6,8 @@
 #include "core/frame.h"
 #include "motion/camera_tracker.h"
 #include "motion/model.h"
-#include "pipelines/motion_report.h"
 #include "pipelines/pipeline.h"
+#include "pipelines/tracked.h"
 
 namespace movseg {
 namespace {
@@ -19,19 +19,30 @@ cv::Ptr<cv::BackgroundSubtractorMOG2> newMog2() {
 }
 
 // Both MOG2 pipelines run at the segmentation scale, like the paper's cut, so the comparison is
-// of methods rather than of resolutions. MOG2 cannot mix frame sizes; the Segmenter resets the
-// pipeline when the size changes.
+// of methods rather than of resolutions.
 class Mog2Pipeline : public Pipeline {
  public:
   explicit Mog2Pipeline(const Params& params) : params_(params) {}
 
-  cv::Mat process(const cv::Mat& bgr, const DebugSink&, Result*) override {
+  struct Frame : Analysis {
+    cv::Mat resized;
+  };
+
+  std::unique_ptr<Analysis> newAnalysis() const override { return std::make_unique<Frame>(); }
+
+  void analyse(const cv::Mat& bgr, Analysis* analysis) override {
+    static_cast<Frame*>(analysis)->resized =
+        resizedTo(bgr, scaledSize(bgr.size(), params_.segmentation_width));
+  }
+
+  cv::Mat segment(const Analysis& analysis, const DebugSink&, Result*) override {
+    if (analysis.first_frame) mog2_ = newMog2();  // a new stream: MOG2 cannot mix sizes
     cv::Mat mask;
-    mog2_->apply(resizedTo(bgr, scaledSize(bgr.size(), params_.segmentation_width)), mask);
+    mog2_->apply(static_cast<const Frame&>(analysis).resized, mask);
     return mask;
   }
 
-  void reset() override { mog2_ = newMog2(); }
+  void reset() override {}
 
   cv::Mat compensatedPreviousFrame() const override { return cv::Mat(); }
 
@@ -47,8 +58,16 @@ class CompensatedMog2Pipeline : public Pipeline {
  public:
   explicit CompensatedMog2Pipeline(const Params& params) : tracker_(params) {}
 
-  cv::Mat process(const cv::Mat& bgr, const DebugSink&, Result* result) override {
-    const CameraTracker::Step step = tracker_.advance(bgr);
+  std::unique_ptr<Analysis> newAnalysis() const override {
+    return std::make_unique<TrackedAnalysis>();
+  }
+
+  void analyse(const cv::Mat& bgr, Analysis* analysis) override {
+    analyseTracked(&tracker_, bgr, analysis);
+  }
+
+  cv::Mat segment(const Analysis& analysis, const DebugSink&, Result* result) override {
+    const CameraTracker::Step& step = static_cast<const TrackedAnalysis&>(analysis).step;
     describeMotion(step, &result->diagnostics);
     const PreparedFrame& cur = step.current->image;
     const cv::Size size = cur.seg_bgr.size();

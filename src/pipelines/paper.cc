@@ -11,8 +11,8 @@
 #include "motion/camera_tracker.h"
 #include "motion/model.h"
 #include "motion/motion_debug.h"
-#include "pipelines/motion_report.h"
 #include "pipelines/pipeline.h"
+#include "pipelines/tracked.h"
 
 namespace movseg {
 namespace {
@@ -61,14 +61,22 @@ class PaperPipeline : public Pipeline {
  public:
   explicit PaperPipeline(const Params& params) : params_(params), tracker_(params) {}
 
-  cv::Mat process(const cv::Mat& bgr, const DebugSink& debug, Result* result) override {
-    const CameraTracker::Step step = tracker_.advance(bgr);  // §3.1
+  std::unique_ptr<Analysis> newAnalysis() const override {
+    return std::make_unique<TrackedAnalysis>();
+  }
+
+  void analyse(const cv::Mat& bgr, Analysis* analysis) override {  // §3.1
+    analyseTracked(&tracker_, bgr, analysis);
+  }
+
+  cv::Mat segment(const Analysis& analysis, const DebugSink& debug, Result* result) override {
+    const CameraTracker::Step& step = static_cast<const TrackedAnalysis&>(analysis).step;
     describeMotion(step, &result->diagnostics);
     const TrackedFrame& cur = *step.current;
     if (step.previous == nullptr) {
       const std::vector<FeatureLabel> unknown(cur.alignment.features.size(), FeatureLabel::kUnknown);
       result->features = labelledFeatures(cur.alignment.features, unknown, cur.image.align_scale);
-      return cv::Mat::zeros(bgr.size(), CV_8U);
+      return cv::Mat::zeros(cur.image.bgr.size(), CV_8U);
     }
     debug.put("matches", [&] { return drawMatches(cur.alignment.grey, step.motion); });
     return classifyAndCut(step, debug, result);

@@ -31,19 +31,38 @@ class DebugSink {
   std::map<std::string, cv::Mat>* pictures_;
 };
 
+// What a pipeline learns from one frame before it segments it. Each pipeline derives its own;
+// the frame loop keeps two and hands them out in turn, so that their buffers are allocated once
+// and the previous frame's analysis stays intact while the next one is made (a pipeline may
+// keep references into it).
+struct Analysis {
+  virtual ~Analysis() = default;
+  bool first_frame = false;  // no previous frame: stream start, reset() or a size change
+};
+
+// A method in two phases, so that a stream can overlap them on two threads: phase 1 (analyse)
+// of frame t+1 runs while phase 2 (segment) of frame t does. Phase 1 depends on the frames
+// alone, never on an earlier segmentation; each phase runs in stream order.
 class Pipeline {
  public:
   virtual ~Pipeline() = default;
 
-  // Segments the next frame of the stream. `bgr` is 8-bit BGR, the pipeline's to keep. Returns
-  // the mask (0 / 255) at any scale — the Segmenter scales it to the frame — and fills
-  // result->features, the diagnostics of its stages, and `debug`.
-  virtual cv::Mat process(const cv::Mat& bgr, const DebugSink& debug, Result* result) = 0;
+  virtual std::unique_ptr<Analysis> newAnalysis() const = 0;
 
-  // Forgets the stream: the next frame is a first frame.
+  // Phase 1: analyses the next frame into `analysis` (whose first_frame the caller has set).
+  // `bgr` is 8-bit BGR, the pipeline's to keep.
+  virtual void analyse(const cv::Mat& bgr, Analysis* analysis) = 0;
+
+  // Phase 2: the mask (0 / 255, at any scale: the frame loop scales it to the frame) of the
+  // analysed frame; fills result->features, the diagnostics of the pipeline's stages, and
+  // `debug`. A first-frame analysis makes it forget what it remembers of earlier frames.
+  virtual cv::Mat segment(const Analysis& analysis, const DebugSink& debug, Result* result) = 0;
+
+  // Forgets phase 1's stream; phase 2 forgets at the next first-frame analysis.
   virtual void reset() = 0;
 
-  // The previous frame warped into the last frame's coordinates; empty when there is none.
+  // The previous frame warped into the last analysed frame's coordinates; empty when there is
+  // none.
   virtual cv::Mat compensatedPreviousFrame() const = 0;
 };
 
@@ -55,5 +74,6 @@ std::unique_ptr<Pipeline> makePaperPipeline(const Params& params);
 std::unique_ptr<Pipeline> makeDiffPipeline(const Params& params);
 std::unique_ptr<Pipeline> makeMog2Pipeline(const Params& params);
 std::unique_ptr<Pipeline> makeCompensatedMog2Pipeline(const Params& params);
+std::unique_ptr<Pipeline> makeDensePipeline(const Params& params);
 
 }  // namespace movseg

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "synth/random.h"
 
@@ -34,6 +35,9 @@ MotionMix motionMix(SynthCamera camera) {
       return {0, 0, 0, 0, false};
     case SynthCamera::kMix:
       break;
+    case SynthCamera::kDolly:
+    case SynthCamera::kForward:
+      throw std::logic_error("the plane has no " + synthCameraName(camera) + " camera");
   }
   return {0.5, 0.6, 0.6, 0.6, true};
 }
@@ -54,24 +58,6 @@ struct CameraMotion {
   cv::Point2d tilt;
   Wave tilt_x, tilt_y;
 };
-
-// A pan that starts near its top speed `rate` and, over hundreds of frames, slows down and
-// sweeps back: the canvas stays bounded however long the clip.
-Wave panWave(double rate, cv::RNG& rng) {
-  Wave wave;
-  wave.period = rng.uniform(200.0, 360.0);
-  wave.phase = rng.uniform(-0.4, 0.4);
-  wave.amplitude = rate * wave.period / (2 * CV_PI);
-  return wave;
-}
-
-Wave shakeWave(double amplitude, cv::RNG& rng) {
-  Wave wave;
-  wave.amplitude = amplitude;
-  wave.period = rng.uniform(6.0, 24.0);
-  wave.phase = rng.uniform(0.0, 2 * CV_PI);
-  return wave;
-}
 
 void addShake(double amount, double scale, cv::RNG& rng, CameraMotion* motion) {
   for (int i = 0; i < 2; ++i) {

@@ -5,12 +5,10 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "synth/raster.h"
+
 namespace movseg {
 namespace {
-
-// Fractional bits of the outline given to fillPoly: objects move in 1/16-pixel steps.
-constexpr int kShift = 4;
-constexpr int kUnit = 1 << kShift;
 
 double polygonArea(const std::vector<cv::Point2d>& polygon) {
   double twice = 0;
@@ -87,7 +85,8 @@ std::vector<cv::Point2d> makeOutline(double area, cv::RNG& rng) {
 // The centre bounces inside the frame grown by a random margin: a negative margin keeps the
 // object nearly whole in view, a margin above its radius lets it leave entirely and come back.
 // It starts anywhere in that box, so it may enter from outside.
-void simulateMotion(int frames, cv::Size frame_size, cv::RNG& rng, SynthObject* object) {
+void simulateMotion(const SynthOptions& options, cv::RNG& rng, SynthObject* object) {
+  const cv::Size frame_size = options.size;
   const double scale = frame_size.width / 320.0;
   const double radius = polygonRadius(object->outline);
   const double margin = std::max(radius * rng.uniform(-0.8, 1.3),
@@ -97,12 +96,12 @@ void simulateMotion(int frames, cv::Size frame_size, cv::RNG& rng, SynthObject* 
   cv::Point2d centre;
   centre.x = rng.uniform(lo.x, hi.x);
   centre.y = rng.uniform(lo.y, hi.y);
-  const double speed = scale * rng.uniform(1.0, 6.0);
+  const double speed = scale * rng.uniform(options.object_speed_min, options.object_speed_max);
   double heading = rng.uniform(0.0, 2 * CV_PI);
   double angle = rng.uniform(0.0, 2 * CV_PI);
   const double spin = rng.uniform(-0.02, 0.02);
   double turn = 0;
-  for (int t = 0; t < frames; ++t) {
+  for (int t = 0; t < options.frames; ++t) {
     object->centre.push_back(centre);
     object->angle.push_back(angle);
     turn = std::clamp(turn + rng.gaussian(0.006), -0.04, 0.04);
@@ -118,17 +117,21 @@ void simulateMotion(int frames, cv::Size frame_size, cv::RNG& rng, SynthObject* 
 
 }  // namespace
 
-std::vector<SynthObject> makeObjects(int count, int frames, cv::Size frame_size,
-                                     const Palette& palette, cv::RNG& rng) {
-  const double scale = frame_size.width / 320.0;
-  const double max_fraction = 0.25 / std::sqrt(count);
-  std::vector<SynthObject> objects(count);
+std::vector<SynthObject> makeObjects(const SynthOptions& options, const Palette& palette,
+                                     cv::RNG& rng) {
+  const double scale = options.size.width / 320.0;
+  const double max_fraction = 0.25 / std::sqrt(options.objects);
+  std::vector<SynthObject> objects(options.objects);
   for (SynthObject& object : objects) {
-    object.outline = makeOutline(rng.uniform(0.05, max_fraction) * frame_size.area(), rng);
+    object.outline = makeOutline(rng.uniform(0.05, max_fraction) * options.size.area(), rng);
     const int side = 2 * cvCeil(polygonRadius(object.outline)) + 5;
-    const cv::Vec3d colour = pickObjectColour(palette, rng);
-    object.texture = makeObjectTexture(side, colour, scale, rng);
-    simulateMotion(frames, frame_size, rng, &object);
+    if (options.camouflage) {
+      object.texture = makeBackgroundTexture(cv::Size(side, side), palette, scale, rng);
+    } else {
+      const cv::Vec3d colour = pickObjectColour(palette, rng);
+      object.texture = makeObjectTexture(side, colour, scale, rng);
+    }
+    simulateMotion(options, rng, &object);
   }
   return objects;
 }
@@ -136,22 +139,12 @@ std::vector<SynthObject> makeObjects(int count, int frames, cv::Size frame_size,
 void drawObject(const SynthObject& object, int t, cv::Mat& frame, cv::Mat& mask) {
   const cv::Point2d centre = object.centre[t];
   const double c = std::cos(object.angle[t]), s = std::sin(object.angle[t]);
-  std::vector<cv::Point> outline;
-  for (const cv::Point2d& p : object.outline) {
-    outline.emplace_back(cvRound((c * p.x - s * p.y + centre.x) * kUnit),
-                         cvRound((s * p.x + c * p.y + centre.y) * kUnit));
-  }
-  const cv::Rect fixed = cv::boundingRect(outline);
-  const double to_pixels = 1.0 / kUnit;
-  const cv::Point top_left(cvFloor(fixed.x * to_pixels) - 1, cvFloor(fixed.y * to_pixels) - 1);
-  const cv::Point bottom_right(cvCeil(fixed.br().x * to_pixels) + 1,
-                               cvCeil(fixed.br().y * to_pixels) + 1);
-  const cv::Rect box = cv::Rect(top_left, bottom_right) & cv::Rect(cv::Point(0, 0), frame.size());
+  std::vector<cv::Point2d> outline;
+  for (const cv::Point2d& p : object.outline)
+    outline.emplace_back(c * p.x - s * p.y + centre.x, s * p.x + c * p.y + centre.y);
+  const Coverage coverage = polygonCoverage(outline, frame.size());
+  const cv::Rect box = coverage.box;
   if (box.empty()) return;
-  for (cv::Point& p : outline) p -= cv::Point(box.x * kUnit, box.y * kUnit);
-  cv::Mat shape = cv::Mat::zeros(box.size(), CV_8U);
-  cv::fillPoly(shape, std::vector<std::vector<cv::Point>>{outline}, cv::Scalar(255), cv::LINE_8,
-               kShift);
   // Texture pixel -> box pixel: turn about the texture's centre, then move onto the object's.
   const double half = (object.texture.cols - 1) / 2.0;
   const cv::Matx23d to_box(c, -s, centre.x - box.x - (c - s) * half, s, c,
@@ -159,8 +152,8 @@ void drawObject(const SynthObject& object, int t, cv::Mat& frame, cv::Mat& mask)
   cv::Mat pixels;
   cv::warpAffine(object.texture, pixels, to_box, box.size(), cv::INTER_LINEAR,
                  cv::BORDER_REPLICATE);
-  pixels.copyTo(frame(box), shape);
-  mask(box).setTo(255, shape);
+  pixels.copyTo(frame(box), coverage.shape);
+  mask(box).setTo(255, coverage.shape);
 }
 
 }  // namespace movseg

@@ -6,6 +6,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "synth/synth.h"
 #include "synth/texture.h"
 
 namespace movseg {
@@ -17,11 +18,11 @@ struct SynthObject {
   std::vector<double> angle;         // per frame, radians
 };
 
-// `count` objects for a clip of `frames` frames: each covers 5 % to 25 % / sqrt(count) of the
-// frame and moves at 1–6 px/frame at 320x240 (scaled with the frame width), along gently curving
-// paths while turning slowly.
-std::vector<SynthObject> makeObjects(int count, int frames, cv::Size frame_size,
-                                     const Palette& palette, cv::RNG& rng);
+// `options.objects` objects for the clip: each covers 5 % to 25 % / sqrt(count) of the frame
+// and moves at a speed within the options' range (px/frame at 320x240, scaled with the frame
+// width), along gently curving paths while turning slowly. Textured as options.camouflage says.
+std::vector<SynthObject> makeObjects(const SynthOptions& options, const Palette& palette,
+                                     cv::RNG& rng);
 
 // Draws the object as it is at frame t into `frame` (CV_8UC3) and sets 255 in `mask` (CV_8U)
 // on exactly the pixels it drew.

@@ -1,6 +1,7 @@
 // Random numbers of the synthetic generator. Each part (palette, background, camera, objects,
-// illumination, each frame's noise) draws from its own cv::RNG seeded from the options' seed, so
-// a part drawing more numbers never shifts another's, and frame t's noise needs no earlier frame.
+// illumination, the 3-D scene, each frame's noise) draws from its own cv::RNG seeded from the
+// options' seed, so a part drawing more numbers never shifts another's, and frame t's noise needs
+// no earlier frame.
 #pragma once
 
 #include <cmath>
@@ -17,6 +18,7 @@ enum class SynthStream : std::uint64_t {
   kObjects,
   kIllumination,
   kNoise,
+  kScene,  // the 3-D scene's layout and textures
 };
 
 // SplitMix64's finaliser: neighbouring seeds give unrelated generator states.
@@ -46,6 +48,28 @@ inline Wave waveWithRate(double max_rate, double min_period, double max_period, 
   wave.period = rng.uniform(min_period, max_period);
   wave.phase = rng.uniform(0.0, 2 * CV_PI);
   wave.amplitude = max_rate * wave.period / (2 * CV_PI);
+  return wave;
+}
+
+// A sweep that starts near its top speed `rate` and, over a period of min_period to max_period
+// frames, slows down and sweeps back: what the camera sees stays bounded however long the clip.
+inline Wave sweepWave(double rate, double min_period, double max_period, cv::RNG& rng) {
+  Wave wave;
+  wave.period = rng.uniform(min_period, max_period);
+  wave.phase = rng.uniform(-0.4, 0.4);
+  wave.amplitude = rate * wave.period / (2 * CV_PI);
+  return wave;
+}
+
+// The sweep of a pan: a period of 200 to 360 frames.
+inline Wave panWave(double rate, cv::RNG& rng) { return sweepWave(rate, 200, 360, rng); }
+
+// A fast wobble of hand-held shake: periods of 6 to 24 frames.
+inline Wave shakeWave(double amplitude, cv::RNG& rng) {
+  Wave wave;
+  wave.amplitude = amplitude;
+  wave.period = rng.uniform(6.0, 24.0);
+  wave.phase = rng.uniform(0.0, 2 * CV_PI);
   return wave;
 }
 

@@ -126,5 +126,27 @@ TEST(Segmenter, OpenCvFailuresBecomeRuntimeErrors) {
   }
 }
 
+// Float frames are read as [0, 1]; one in 0-255 would saturate to white and give an empty mask
+// in silence, so it is refused with a message that says what to pass instead.
+TEST(Segmenter, RejectsFloatFramesOutsideTheUnitRange) {
+  const test::FramePair pair = movingPair();
+  cv::Mat unit, byte_range, negative;
+  pair.cur.convertTo(unit, CV_32FC3, 1.0 / 255);
+  pair.cur.convertTo(byte_range, CV_32FC3);
+  unit.convertTo(negative, CV_64FC3, 1.0, -0.5);
+  Segmenter segmenter;
+  EXPECT_NO_THROW(segmenter.process(unit));
+  for (const cv::Mat& frame : {byte_range, negative}) {
+    try {
+      segmenter.process(frame);
+      ADD_FAILURE() << "accepted a float frame outside [0, 1]";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("float frame values must be in [0, 1]"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace movseg

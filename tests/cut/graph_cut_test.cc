@@ -18,10 +18,13 @@ TEST(GraphCut, SeparatesTwoFlatColourRegionsExactly) {
   // Sparse seeds, far from the boundary, as features would be.
   const std::vector<cv::Point> fg{{45, 30}, {40, 25}}, bg{{5, 5}, {75, 55}, {5, 55}};
   for (int band : {0, 8}) {
-    Params params;
-    params.cut_band = band;
-    const CutResult cut = geodesicGraphCut(bgr, fg, bg, params);
-    EXPECT_EQ(cv::countNonZero(cut.mask != truth), 0) << "band " << band;
+    for (int refine : {0, 3}) {
+      Params params;
+      params.cut_band = band;
+      params.cut_refine = refine;
+      const CutResult cut = geodesicGraphCut(bgr, fg, bg, params);
+      EXPECT_EQ(cv::countNonZero(cut.mask != truth), 0) << "band " << band << ", refine " << refine;
+    }
   }
 }
 

@@ -83,6 +83,18 @@ TEST(EvalDataset, DetectsEachLayout) {
   EXPECT_THROW(loadGroundTruth(dir / "plain", GtFormat::kCdnet), std::runtime_error);
 }
 
+// `eval PRED blackswan/masks` names the sequence blackswan, not masks.
+TEST(EvalDataset, AMaskFolderGivenAloneIsNamedAfterItsSequence) {
+  test::TempDir dir;
+  writeDavisSequence(dir / "blackswan", {0}, {0});
+  writeImage(dir / "cows/ground-truth", "00000.png", rectMask(kSize, kSquare));
+  writeImage(dir / "masks_of_mine", "00000.png", rectMask(kSize, kSquare));
+  EXPECT_EQ(loadGroundTruth(dir / "blackswan/masks", GtFormat::kAuto).at(0).name, "blackswan");
+  EXPECT_EQ(loadGroundTruth(dir / "blackswan/masks/", GtFormat::kAuto).at(0).name, "blackswan");
+  EXPECT_EQ(loadGroundTruth(dir / "cows/ground-truth", GtFormat::kPlain).at(0).name, "cows");
+  EXPECT_EQ(loadGroundTruth(dir / "masks_of_mine", GtFormat::kAuto).at(0).name, "masks_of_mine");
+}
+
 TEST(EvalDataset, EmptyOrNonMaskFolderIsAnError) {
   test::TempDir dir;
   std::filesystem::create_directories(dir / "empty");

@@ -117,6 +117,28 @@ TEST(EvalCli, BadGroundTruthIsAOneLineError) {
   EXPECT_EQ(run.output.find('\n'), run.output.size() - 1) << run.output;
 }
 
+// `eval GT PRED`: the ground truth (frames + masks) given as PRED, the predictions as GT.
+TEST(EvalCli, SwappedArgumentsAreAnError) {
+  test::TempDir dir;
+  for (int i = 0; i < 2; ++i) {
+    const std::string file = "0000" + std::to_string(i) + ".png";
+    writeImage(dir / "seq/frames", file, rectMask(kSize, {}));
+    writeImage(dir / "seq/masks", file, rectMask(kSize, kSquare));
+    writeImage(dir / "out", file, rectMask(kSize, kSquare));
+  }
+  const test::CommandResult right =
+      test::runCli("eval '" + (dir / "out") + "' '" + (dir / "seq") + "'");
+  EXPECT_EQ(right.exit_code, 0) << right.output;
+  EXPECT_NE(right.output.find("\nseq "), std::string::npos) << right.output;
+  const test::CommandResult swapped =
+      test::runCli("eval '" + (dir / "seq") + "' '" + (dir / "out") + "'");
+  EXPECT_EQ(swapped.exit_code, 1) << swapped.output;
+  EXPECT_NE(swapped.output.find("are they swapped? The order is movseg eval PRED GT"),
+            std::string::npos)
+      << swapped.output;
+  EXPECT_EQ(swapped.output.find('\n'), swapped.output.size() - 1) << swapped.output;
+}
+
 TEST(EvalCli, ResizedPredictionIsAnError) {
   test::TempDir dir;
   writePlainPair(dir);

@@ -5,13 +5,7 @@
 # made by the installed CLI that the example writes the CLI's masks, bit for bit, and that the
 # OpenCV drop-in finds the same moving pixels.
 
-function(run)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE out)
-  if(NOT code EQUAL 0)
-    message(FATAL_ERROR "failed (${code}): ${ARGN}\n${out}")
-  endif()
-  set(output "${out}" PARENT_SCOPE)
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/run.cmake)
 
 set(prefix ${WORK_DIR}/prefix)
 set(clip ${WORK_DIR}/clip)
@@ -37,13 +31,13 @@ foreach(index RANGE 4)
   run(${CMAKE_COMMAND} -E compare_files ${clip}/cli_masks/${name}.png ${clip}/example_masks/${name}.png)
 endforeach()
 
-# The same program through pkg-config, linked against the installed shared library.
+# The same program through pkg-config, linked against the installed shared library, which it
+# finds at run time by the RUNPATH the .pc file's flags record: no LD_LIBRARY_PATH.
 file(GLOB pc_dirs ${prefix}/lib*/pkgconfig ${prefix}/lib/*/pkgconfig)
 file(COPY ${EXAMPLE_DIR}/main.cc DESTINATION ${WORK_DIR}/pkg-config)
 run(${CMAKE_COMMAND} -E env PKG_CONFIG_PATH=${pc_dirs}
     sh -c "cd ${WORK_DIR}/pkg-config && sh ${EXAMPLE_DIR}/build_with_pkg_config.sh")
-get_filename_component(libdir ${pc_dirs} DIRECTORY)
-run(${CMAKE_COMMAND} -E env LD_LIBRARY_PATH=${libdir}
+run(${CMAKE_COMMAND} -E env --unset=LD_LIBRARY_PATH
     ${WORK_DIR}/pkg-config/segment_video ${clip}/frames/%05d.png ${WORK_DIR}/pkg-config)
 if(NOT output STREQUAL segment_output)
   message(FATAL_ERROR "the pkg-config build disagrees:\n${output}\n---\n${segment_output}")

@@ -115,9 +115,29 @@ def test_frames_beyond_the_warps_limit_raise_value_error():
         movseg.Segmenter().process(np.zeros((100000, 10), np.uint8))
 
 
-def test_not_an_array_raises_type_error():
+def test_not_an_array_raises_a_short_type_error(frames):
     with pytest.raises(TypeError):
         movseg.Segmenter().process("frame.png")
+    with pytest.raises(TypeError) as error:
+        movseg.Segmenter().process(frames)  # a list of frames: named, not printed
+    assert "numpy array" in str(error.value) and "got list" in str(error.value)
+    assert len(str(error.value)) < 200
+
+
+def test_rgb_and_rgba_frames_with_rgb_give_the_bgr_masks(frames, cli_masks):
+    segmenter, with_alpha = movseg.Segmenter(), movseg.Segmenter()
+    for index, frame in enumerate(frames[:3]):
+        rgb = frame[:, :, ::-1]  # as PIL and imageio give it (a view with a negative stride)
+        rgba = np.dstack([rgb, np.full(frame.shape[:2], 255, np.uint8)])
+        assert np.array_equal(segmenter.process(rgb, rgb=True).mask, cli_masks[index])
+        assert np.array_equal(with_alpha.process(rgba, rgb=True).mask, cli_masks[index])
+
+
+def test_float_frames_in_0_255_raise_value_error(frames, cli_masks):
+    segmenter = movseg.Segmenter()
+    assert np.array_equal(segmenter.process(frames[0] / 255.0).mask, cli_masks[0])
+    with pytest.raises(ValueError, match=r"float frame values must be in \[0, 1\]"):
+        segmenter.process(frames[1].astype(np.float32))
 
 
 def test_segmenters_in_parallel_threads_give_the_clis_masks(frames, cli_masks):

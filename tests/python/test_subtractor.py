@@ -1,4 +1,5 @@
-"""movseg.createMovingCameraSubtractor: cv2.BackgroundSubtractor's calls, the Segmenter's masks."""
+"""movseg.createMovingCameraSubtractor: a cv2.BackgroundSubtractor, the Segmenter's masks."""
+import cv2
 import numpy as np
 import pytest
 
@@ -22,20 +23,29 @@ def test_apply_fills_fgmask_and_ignores_the_learning_rate(frames, cli_masks):
         assert np.array_equal(fgmask, cli_masks[index]), f"frame {index}"
 
 
-def test_bad_fgmask_or_frame_raise_value_error(frames):
+def test_a_bad_frame_raises_cv2_error_as_mog2s_apply_does():
     subtractor = movseg.createMovingCameraSubtractor()
-    with pytest.raises(ValueError):
-        subtractor.apply(frames[0], np.empty((3, 3), np.uint8))
-    with pytest.raises(ValueError):
+    with pytest.raises(cv2.error, match="unsupported channel count"):
         subtractor.apply(np.zeros((4, 4, 2), np.uint8))
 
 
+# cv2 writes an output array in place or refuses it, as for MOG2: a view or a Fortran-ordered
+# fgmask is never left untouched in silence (a temporary copy written instead).
 @pytest.mark.parametrize("layout", ["view", "fortran"])
-def test_fgmask_of_any_layout_is_written_in_place(frames, cli_masks, layout):
-    subtractor = movseg.createMovingCameraSubtractor()
+def test_fgmask_of_another_layout_raises_cv2_error_as_mog2s_apply_does(frames, layout):
     height, width = frames[0].shape[:2]
     big = np.zeros((2 * height, 2 * width), np.uint8)
     fgmask = big[::2, ::2] if layout == "view" else np.zeros((height, width), np.uint8, order="F")
-    for index, frame in enumerate(frames[:2]):
-        assert subtractor.apply(frame, fgmask) is fgmask
-        assert np.array_equal(fgmask, cli_masks[index]), f"frame {index}"
+    for subtractor in movseg.createMovingCameraSubtractor(), cv2.createBackgroundSubtractorMOG2():
+        with pytest.raises(cv2.error, match="Layout of the output array fgmask is incompatible"):
+            subtractor.apply(frames[0], fgmask)
+
+
+def test_is_a_cv2_background_subtractor_whose_methods_all_run(frames):
+    subtractor = movseg.createMovingCameraSubtractor(movseg.Params(method="diff"))
+    assert type(subtractor) is cv2.BackgroundSubtractor
+    for frame in frames[:3]:
+        subtractor.apply(frame)
+    subtractor.clear()  # forgets the stream: the next frame is a first frame
+    assert not subtractor.apply(frames[3]).any()
+    assert not subtractor.empty() and subtractor.getDefaultName()

@@ -59,13 +59,60 @@ TEST(SynthCli, WritesFramesMasksAndCameraModels) {
     }
   }
   EXPECT_EQ(lines, 4);
+  EXPECT_FALSE(std::filesystem::exists(out + "/poses.jsonl"));
+}
+
+TEST(SynthCli, DepthSceneAlsoWritesThePoses) {
+  TempDir dir;
+  const std::string out = dir / "clip";
+  const auto result = runCli("synth -o " + out +
+                             " --scene depth --camera dolly --frames 3 --size 96x72 --seed 2 "
+                             "--objects 1 --camouflage --object-speed 1-3.5 --noise 2 "
+                             "--illumination 0.1");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_EQ(result.output, "synth: wrote 3 frames (96x72, scene depth, camera dolly, 1 object, "
+                           "seed 2) to " + out + "\n");
+  SynthOptions options;
+  options.frames = 3;
+  options.size = cv::Size(96, 72);
+  options.seed = 2;
+  options.scene = SynthScene::kDepth;
+  options.camera = SynthCamera::kDolly;
+  options.objects = 1;
+  options.camouflage = true;
+  options.object_speed_max = 3.5;
+  options.noise_sigma = 2;
+  options.illumination_drift = 0.1;
+  const SynthSequence sequence(options);
+  EXPECT_EQ(cv::norm(cv::imread(out + "/frames/00002.png"), sequence.frame(2).frame, cv::NORM_INF),
+            0);
+  std::ifstream poses(out + "/poses.jsonl");
+  std::string line;
+  int t = 0;
+  for (; std::getline(poses, line); ++t) {
+    const nlohmann::json entry = nlohmann::json::parse(line);
+    ASSERT_EQ(entry.at("frame").get<int>(), t);
+    const SynthPinhole pose = *sequence.frame(t).pose;
+    for (int r = 0; r < 3; ++r) {
+      EXPECT_EQ(entry.at("centre")[r].get<double>(), pose.centre[r]);
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_EQ(entry.at("K")[r][c].get<double>(), pose.intrinsics(r, c));
+        EXPECT_EQ(entry.at("R")[r][c].get<double>(), pose.rotation(r, c));
+      }
+    }
+  }
+  EXPECT_EQ(t, 3);
 }
 
 TEST(SynthCli, BadOptionsFailWithOneLine) {
   TempDir dir;
   const std::string out = dir / "clip";
-  for (const std::string bad : {"--size 10x10", "--size abc", "--objects 0", "--objects 4",
-                                "--frames 0", "--camera tilt", "--seed -1"}) {
+  for (const std::string bad :
+       {"--size 10x10", "--size abc", "--objects 0", "--objects 4", "--frames 0", "--camera tilt",
+        "--seed -1", "--object-speed 3-1", "--object-speed 0-2", "--object-speed 40",
+        "--object-speed fast", "--object-speed -1-2", "--noise -1", "--illumination 0.6",
+        "--scene cube", "--camera dolly", "--scene plane --camera forward",
+        "--scene depth --camera tilt"}) {
     const auto result = runCli("synth -o " + out + " " + bad);
     EXPECT_NE(result.exit_code, 0) << bad;
     EXPECT_EQ(result.output.rfind("movseg: error: ", 0), 0u) << bad << ": " << result.output;

@@ -1,10 +1,14 @@
-#include "pipelines/motion_report.h"
+#include "pipelines/tracked.h"
 
 #include <algorithm>
 
 #include "motion/model.h"
 
 namespace movseg {
+
+void analyseTracked(CameraTracker* tracker, const cv::Mat& bgr, Analysis* analysis) {
+  static_cast<TrackedAnalysis*>(analysis)->step = tracker->advance(bgr);
+}
 
 void describeMotion(const CameraTracker::Step& step, Diagnostics* diag) {
   const MotionEstimate& motion = step.motion;

@@ -1,0 +1,273 @@
+#include "element.h"
+
+#include <map>
+#include <mutex>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include <gst/video/video.h>
+#include <opencv2/core.hpp>
+
+#include "io/overlay.h"
+#include "movseg/fields.h"
+#include "movseg/segmenter.h"
+#include "properties.h"
+
+GST_DEBUG_CATEGORY_STATIC(movseg_debug);
+#define GST_CAT_DEFAULT movseg_debug
+
+namespace {
+
+// What comes out of the element.
+enum class Mode { kMask, kOverlay };
+
+#define MOVSEG_INPUT_FORMATS "{ BGR, BGRx, GRAY8 }"
+
+// Property ids: 0 is reserved by GObject; then `mode`, `post-messages`, and the parameters.
+enum { kPropMode = 1, kPropPostMessages, kFirstParamProp };
+
+// The element's state, a C++ object behind the GObject instance. Properties are set from the
+// application's thread while frames run on the streaming thread: `lock` guards the settings.
+struct State {
+  std::mutex lock;
+  movseg::Params params;
+  std::map<std::size_t, std::string> refused;  // by parameter: why its last value was refused
+  bool params_changed = true;   // the segmenter is (re)made with the settings at the next frame
+  Mode mode = Mode::kMask;
+  bool post_messages = true;
+
+  std::optional<movseg::Segmenter> segmenter;  // streaming thread only
+  guint64 frame = 0;
+};
+
+}  // namespace
+
+struct _GstMovseg {
+  GstVideoFilter parent;
+  State* state;
+};
+
+G_DEFINE_TYPE(GstMovseg, gst_movseg, GST_TYPE_VIDEO_FILTER)
+
+namespace {
+
+GType modeType() {
+  static GType type = 0;
+  if (type == 0) {
+    static const GEnumValue values[] = {
+        {static_cast<gint>(Mode::kMask), "the mask of what moves (GRAY8, 0 / 255)", "mask"},
+        {static_cast<gint>(Mode::kOverlay),
+         "the mask tinted over the frame, features as dots (BGR)", "overlay"},
+        {0, nullptr, nullptr}};
+    type = g_enum_register_static("GstMovsegMode", values);
+  }
+  return type;
+}
+
+State& stateOf(gpointer object) { return *GST_MOVSEG(object)->state; }
+
+void setProperty(GObject* object, guint id, const GValue* value, GParamSpec* spec) {
+  State& state = stateOf(object);
+  const std::lock_guard<std::mutex> lock(state.lock);
+  switch (id) {
+    case kPropMode: state.mode = static_cast<Mode>(g_value_get_enum(value)); return;
+    case kPropPostMessages: state.post_messages = g_value_get_boolean(value); return;
+    default: break;
+  }
+  if (id < kFirstParamProp || id - kFirstParamProp >= movseg::paramFields().size()) {
+    G_OBJECT_WARN_INVALID_PROPERTY_ID(object, id, spec);
+    return;
+  }
+  const std::size_t field = id - kFirstParamProp;
+  try {
+    movseg::gst::setParamProperty(&state.params, field, value);
+    state.refused.erase(field);
+    state.params_changed = true;
+  } catch (const std::invalid_argument& e) {
+    state.refused[field] = e.what();  // reported when the stream starts, as an error
+  }
+}
+
+void getProperty(GObject* object, guint id, GValue* value, GParamSpec* spec) {
+  State& state = stateOf(object);
+  const std::lock_guard<std::mutex> lock(state.lock);
+  switch (id) {
+    case kPropMode: g_value_set_enum(value, static_cast<gint>(state.mode)); return;
+    case kPropPostMessages: g_value_set_boolean(value, state.post_messages); return;
+    default: break;
+  }
+  if (id < kFirstParamProp || id - kFirstParamProp >= movseg::paramFields().size()) {
+    G_OBJECT_WARN_INVALID_PROPERTY_ID(object, id, spec);
+    return;
+  }
+  movseg::gst::getParamProperty(state.params, id - kFirstParamProp, value);
+}
+
+// A refused property value stops the stream before it starts, naming the parameter.
+gboolean start(GstBaseTransform* transform) {
+  State& state = stateOf(transform);
+  const std::lock_guard<std::mutex> lock(state.lock);
+  state.frame = 0;
+  state.segmenter.reset();
+  state.params_changed = true;
+  if (state.refused.empty()) return TRUE;
+  const std::string& reason = state.refused.begin()->second;
+  GST_ELEMENT_ERROR(transform, LIBRARY, SETTINGS, ("%s", reason.c_str()), (nullptr));
+  return FALSE;
+}
+
+gboolean sinkEvent(GstBaseTransform* transform, GstEvent* event) {
+  if (GST_EVENT_TYPE(event) == GST_EVENT_FLUSH_STOP) {
+    State& state = stateOf(transform);
+    if (state.segmenter) state.segmenter->reset();  // after a seek the frames are no sequence
+  }
+  return GST_BASE_TRANSFORM_CLASS(gst_movseg_parent_class)->sink_event(transform, event);
+}
+
+GstCaps* outputFormat(Mode mode) {
+  return gst_caps_from_string(mode == Mode::kMask ? "video/x-raw, format=GRAY8"
+                                                  : "video/x-raw, format=BGR");
+}
+
+// Sink caps -> the same video in the mode's output format; source caps -> the same video in
+// any input format. Everything but the format (size, rate, aspect) passes unchanged.
+GstCaps* transformCaps(GstBaseTransform* transform, GstPadDirection direction, GstCaps* caps,
+                       GstCaps* filter) {
+  Mode mode;
+  {
+    State& state = stateOf(transform);
+    const std::lock_guard<std::mutex> lock(state.lock);
+    mode = state.mode;
+  }
+  GstCaps* output_format = outputFormat(mode);
+  GstCaps* formatless = direction == GST_PAD_SRC ? gst_caps_intersect(caps, output_format)
+                                                 : gst_caps_copy(caps);
+  for (guint i = 0; i < gst_caps_get_size(formatless); ++i) {
+    gst_structure_remove_fields(gst_caps_get_structure(formatless, i), "format", "colorimetry",
+                                "chroma-site", nullptr);
+  }
+  GstCaps* formats = direction == GST_PAD_SINK
+                         ? gst_caps_ref(output_format)
+                         : gst_caps_from_string("video/x-raw, format=" MOVSEG_INPUT_FORMATS);
+  GstCaps* result = gst_caps_intersect(formatless, formats);
+  gst_caps_unref(formats);
+  gst_caps_unref(formatless);
+  gst_caps_unref(output_format);
+  if (filter != nullptr) {
+    GstCaps* filtered = gst_caps_intersect_full(filter, result, GST_CAPS_INTERSECT_FIRST);
+    gst_caps_unref(result);
+    result = filtered;
+  }
+  return result;
+}
+
+// The segmenter with the current settings, (re)made when they changed: a new stream start.
+movseg::Segmenter* segmenterFor(GstVideoFilter* filter, Mode* mode, bool* post_messages) {
+  State& state = stateOf(filter);
+  const std::lock_guard<std::mutex> lock(state.lock);
+  *mode = state.mode;
+  *post_messages = state.post_messages;
+  if (state.params_changed || !state.segmenter) {
+    state.params_changed = false;
+    try {
+      state.segmenter.emplace(state.params);
+    } catch (const std::invalid_argument& e) {
+      GST_ELEMENT_ERROR(filter, LIBRARY, SETTINGS, ("%s", e.what()), (nullptr));
+      return nullptr;
+    }
+  }
+  return &*state.segmenter;
+}
+
+// A cv::Mat over a frame's pixels (rows may be padded).
+cv::Mat matOf(GstVideoFrame* frame) {
+  const int type = GST_VIDEO_FRAME_N_COMPONENTS(frame) == 1 ? CV_8UC1
+                   : GST_VIDEO_FRAME_FORMAT(frame) == GST_VIDEO_FORMAT_BGRx ? CV_8UC4
+                                                                             : CV_8UC3;
+  return cv::Mat(GST_VIDEO_FRAME_HEIGHT(frame), GST_VIDEO_FRAME_WIDTH(frame), type,
+                 GST_VIDEO_FRAME_PLANE_DATA(frame, 0),
+                 static_cast<size_t>(GST_VIDEO_FRAME_PLANE_STRIDE(frame, 0)));
+}
+
+GstFlowReturn transformFrame(GstVideoFilter* filter, GstVideoFrame* in, GstVideoFrame* out) {
+  Mode mode = Mode::kMask;
+  bool post_messages = true;
+  movseg::Segmenter* segmenter = segmenterFor(filter, &mode, &post_messages);
+  if (segmenter == nullptr) return GST_FLOW_ERROR;
+  State& state = stateOf(filter);
+  const cv::Mat frame = matOf(in);
+  const movseg::Result result = segmenter->process(frame);
+  cv::Mat output = matOf(out);
+  if (mode == Mode::kMask) {
+    result.mask.copyTo(output);
+  } else {
+    movseg::drawOverlay(frame, result, "frame " + std::to_string(state.frame)).copyTo(output);
+  }
+  if (post_messages) {
+    GstStructure* diagnostics = movseg::gst::diagnosticsStructure(
+        result.diagnostics, state.frame, GST_BUFFER_PTS(in->buffer));
+    gst_element_post_message(GST_ELEMENT(filter),
+                             gst_message_new_element(GST_OBJECT(filter), diagnostics));
+  }
+  ++state.frame;
+  return GST_FLOW_OK;
+}
+
+void finalize(GObject* object) {
+  delete GST_MOVSEG(object)->state;
+  G_OBJECT_CLASS(gst_movseg_parent_class)->finalize(object);
+}
+
+void installProperties(GObjectClass* object_class) {
+  const auto flags = static_cast<GParamFlags>(G_PARAM_READWRITE | GST_PARAM_MUTABLE_READY);
+  g_object_class_install_property(
+      object_class, kPropMode,
+      g_param_spec_enum("mode", "mode", "what the element outputs", modeType(),
+                        static_cast<gint>(Mode::kMask), flags));
+  g_object_class_install_property(
+      object_class, kPropPostMessages,
+      g_param_spec_boolean("post-messages", "post-messages",
+                           "post each frame's diagnostics as an element message named movseg",
+                           TRUE, static_cast<GParamFlags>(G_PARAM_READWRITE |
+                                                          GST_PARAM_MUTABLE_PLAYING)));
+  movseg::gst::installParamProperties(object_class, kFirstParamProp);
+}
+
+void addPadTemplates(GstElementClass* element_class) {
+  gst_element_class_add_pad_template(
+      element_class,
+      gst_pad_template_new("sink", GST_PAD_SINK, GST_PAD_ALWAYS,
+                           gst_caps_from_string(GST_VIDEO_CAPS_MAKE(MOVSEG_INPUT_FORMATS))));
+  gst_element_class_add_pad_template(
+      element_class,
+      gst_pad_template_new("src", GST_PAD_SRC, GST_PAD_ALWAYS,
+                           gst_caps_from_string(GST_VIDEO_CAPS_MAKE("{ GRAY8, BGR }"))));
+}
+
+}  // namespace
+
+static void gst_movseg_class_init(GstMovsegClass* klass) {
+  GST_DEBUG_CATEGORY_INIT(movseg_debug, "movseg", 0, "moving object segmentation");
+  auto* object_class = G_OBJECT_CLASS(klass);
+  object_class->set_property = setProperty;
+  object_class->get_property = getProperty;
+  object_class->finalize = finalize;
+  installProperties(object_class);
+
+  auto* element_class = GST_ELEMENT_CLASS(klass);
+  gst_element_class_set_static_metadata(
+      element_class, "Moving object segmentation", "Filter/Analyzer/Video",
+      "Segments what moves in video from a moving camera: outputs the mask or an overlay, and "
+      "posts each frame's diagnostics as an element message",
+      "movseg");
+  addPadTemplates(element_class);
+
+  auto* transform_class = GST_BASE_TRANSFORM_CLASS(klass);
+  transform_class->start = start;
+  transform_class->sink_event = sinkEvent;
+  transform_class->transform_caps = transformCaps;
+  GST_VIDEO_FILTER_CLASS(klass)->transform_frame = transformFrame;
+}
+
+static void gst_movseg_init(GstMovseg* self) { self->state = new State; }

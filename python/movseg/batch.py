@@ -1,0 +1,249 @@
+"""python3 -m movseg batch INPUT... -o OUTDIR: many videos at once, on one machine or a cluster.
+
+Each input (a video file, a folder of frames, or a text file listing such inputs, one a line) is
+one task on Dask distributed: a local cluster of one worker process per core, or the cluster of
+the scheduler given with --scheduler. A task runs the compiled `movseg segment` tool, as
+`python3 -m movseg` does, so its masks are the CLI's bit for bit; it writes the input's results
+into a hidden folder of OUTDIR and renames it to OUTDIR/<name>/ when they are complete:
+
+    OUTDIR/<name>/masks/00000.png, ...   the masks
+    OUTDIR/<name>/stats.jsonl            the diagnostics of every frame (`movseg segment --stats`)
+    OUTDIR/<name>/summary.json           the input's summary row, written last
+    OUTDIR/summary.csv                   every input's row, rewritten at the end of each run
+
+A finished input (one whose folder exists) is skipped on a re-run unless --force. A failing input
+is reported with its error and does not stop the others; the exit status is 1 when any failed.
+"""
+import argparse
+import contextlib
+import csv
+import io
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+from .__main__ import cli_path
+
+COLUMNS = ["name", "input", "status", "frames", "seconds", "fps", "J", "F", "error"]
+# Folder names that say what a folder holds rather than which video it is: clip/frames is "clip".
+LAYOUT_FOLDERS = {"frames", "input", "images"}
+
+
+def parse_arguments(argv):
+    parser = argparse.ArgumentParser(
+        prog="python3 -m movseg batch",
+        description="Segment many videos at once on Dask distributed, one task per input.")
+    parser.add_argument("inputs", nargs="+", metavar="INPUT",
+                        help="video file, folder of frames, or .txt file listing such inputs")
+    parser.add_argument("-o", "--output", required=True, metavar="OUTDIR",
+                        help="folder of the results: OUTDIR/<name>/ per input, OUTDIR/summary.csv")
+    parser.add_argument("--scheduler", metavar="ADDRESS",
+                        help="a running Dask scheduler (tcp://host:8786); default: a local cluster")
+    parser.add_argument("--workers", type=int, metavar="N",
+                        help="worker processes of the local cluster (default: one per core)")
+    parser.add_argument("--method", help="segmentation method (movseg segment --method)")
+    parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                        help="a parameter by its name (movseg segment --set), repeatable")
+    parser.add_argument("--gt", metavar="DIR",
+                        help="ground truth, DIR/<name>/ per input (as movseg eval reads it): "
+                             "adds J and F to the summary")
+    parser.add_argument("--force", action="store_true", help="redo finished inputs too")
+    args = parser.parse_args(argv)
+    if args.workers is not None and (args.workers < 1 or args.scheduler):
+        parser.error("--workers takes a count of at least 1, for the local cluster only")
+    return args
+
+
+def read_list(path):
+    """The inputs a list file names; relative paths are relative to the list's folder."""
+    folder = os.path.dirname(os.path.abspath(path))
+    with open(path, encoding="utf-8") as lines:
+        entries = [line.strip() for line in lines]
+    return [os.path.join(folder, entry) for entry in entries if entry and not entry.startswith("#")]
+
+
+def expand_inputs(inputs):
+    """Absolute paths, which every worker sees alike, with list files replaced by their entries."""
+    expanded = []
+    for source in inputs:
+        if os.path.isfile(source) and source.endswith(".txt"):
+            expanded += read_list(source)
+        else:
+            expanded.append(os.path.abspath(source))
+    return expanded
+
+
+def input_name(source):
+    """'clips/walk.mp4' -> 'walk'; 'walk/frames' -> 'walk'."""
+    path = os.path.normpath(source)
+    name = os.path.basename(path)
+    if os.path.isdir(path):
+        return os.path.basename(os.path.dirname(path)) if name in LAYOUT_FOLDERS else name
+    return os.path.splitext(name)[0]
+
+
+def named_inputs(sources):
+    named = {}
+    for source in sources:
+        name = input_name(source)
+        if name in named:
+            raise ValueError(f"'{named[name]}' and '{source}' would both write OUTDIR/{name}/: "
+                             "rename one")
+        named[name] = source
+    return named
+
+
+def last_line(text):
+    lines = text.strip().splitlines()
+    return lines[-1] if lines else "no message"
+
+
+def scores(masks, truth, scratch):
+    """J and F of the masks against the ground truth, by `movseg eval`."""
+    report = os.path.join(scratch, "eval.json")
+    done = subprocess.run([cli_path(), "eval", masks, truth, "--json", report],
+                          capture_output=True, text=True)
+    if done.returncode != 0:
+        raise RuntimeError(last_line(done.stderr))
+    with open(report, encoding="utf-8") as text:
+        mean = json.load(text)["mean"]
+    os.remove(report)
+    return {"J": round(mean["J"], 4), "F": round(mean["F"], 4)}
+
+
+def publish(scratch, folder):
+    """Puts the finished scratch folder in place of OUTDIR/<name>/ in one rename (a previous
+    result, when --force redoes one, goes only once the new one is complete)."""
+    old = None
+    if os.path.exists(folder):
+        old = scratch + ".old"
+        os.rename(folder, old)
+    os.rename(scratch, folder)
+    if old:
+        shutil.rmtree(old)
+
+
+def segment_input(name, source, output, options, truth):
+    """One task: segments `source` into output/name/ and returns its summary row. Runs on a
+    worker; a failure is returned as a row, so that it never stops the other inputs."""
+    row = {"name": name, "input": source, "status": "failed"}
+    scratch = tempfile.mkdtemp(prefix=f".{name}.", suffix=".partial", dir=output)
+    try:
+        if truth and not os.path.isdir(truth):
+            raise RuntimeError(f"no ground truth '{truth}'")
+        masks, stats = os.path.join(scratch, "masks"), os.path.join(scratch, "stats.jsonl")
+        start = time.monotonic()
+        done = subprocess.run([cli_path(), "segment", source, "-o", masks, "--stats", stats, "-q",
+                               *options], capture_output=True, text=True)
+        if done.returncode != 0:
+            raise RuntimeError(last_line(done.stderr))
+        seconds = time.monotonic() - start
+        with open(stats, encoding="utf-8") as lines:
+            frames = sum(1 for _ in lines)
+        row.update(status="done", frames=frames, seconds=round(seconds, 3),
+                   fps=round(frames / seconds, 1))
+        if truth:
+            row.update(scores(masks, truth, scratch))
+        with open(os.path.join(scratch, "summary.json"), "w", encoding="utf-8") as summary:
+            json.dump(row, summary)
+        publish(scratch, os.path.join(output, name))
+    except (OSError, RuntimeError) as error:
+        row["error"] = str(error)
+    finally:
+        shutil.rmtree(scratch, ignore_errors=True)
+    return row
+
+
+def finished_row(output, name):
+    """The summary row of a finished input; None when it has none."""
+    try:
+        with open(os.path.join(output, name, "summary.json"), encoding="utf-8") as summary:
+            return {**json.load(summary), "status": "skipped"}
+    except (OSError, ValueError):
+        return None
+
+
+def write_csv(path, rows):
+    text = io.StringIO()
+    writer = csv.DictWriter(text, COLUMNS, extrasaction="ignore")
+    writer.writeheader()
+    writer.writerows(rows)
+    scratch = path + ".partial"
+    with open(scratch, "w", encoding="utf-8") as out:
+        out.write(text.getvalue())
+    os.replace(scratch, path)
+
+
+def describe(row):
+    if row["status"] == "failed":
+        return f"failed: {row['error']}"
+    text = f"{row['status']}: {row['frames']} frames, {row['fps']} fps"
+    if "J" in row:
+        text += f", J {row['J']:.3f}, F {row['F']:.3f}"
+    return text + (" (finished before; --force redoes it)" if row["status"] == "skipped" else "")
+
+
+@contextlib.contextmanager
+def dask_client(args):
+    """A client of the scheduler at --scheduler, else of a local cluster closed with it."""
+    from dask.distributed import Client, LocalCluster  # the rest of the package needs no Dask
+
+    if args.scheduler:
+        with Client(args.scheduler) as client:
+            yield client
+        return
+    with LocalCluster(n_workers=args.workers or os.cpu_count(), threads_per_worker=1,
+                      processes=True, dashboard_address=None) as cluster, Client(cluster) as client:
+        yield client
+
+
+def run(args):
+    from dask.distributed import as_completed
+
+    output = os.path.abspath(args.output)
+    os.makedirs(output, exist_ok=True)
+    named = named_inputs(expand_inputs(args.inputs))
+    options = (["--method", args.method] if args.method else []) + \
+        [item for value in args.set for item in ("--set", value)]
+    rows, todo = {}, []
+    for name, source in named.items():
+        finished = None if args.force else finished_row(output, name)
+        if finished:
+            rows[name] = finished
+        else:
+            todo.append(name)
+    count = len(named)
+    for index, name in enumerate(rows, 1):
+        print(f"batch: [{index}/{count}] {name} {describe(rows[name])}", flush=True)
+    if todo:
+        with dask_client(args) as client:
+            futures = {client.submit(segment_input, name, named[name], output, options,
+                                     args.gt and os.path.join(os.path.abspath(args.gt), name),
+                                     pure=False): name for name in todo}
+            for future in as_completed(futures):
+                name = futures[future]
+                try:
+                    rows[name] = future.result()
+                except Exception as error:  # the worker itself failed (killed, lost)
+                    rows[name] = {"name": name, "input": named[name], "status": "failed",
+                                  "error": f"{type(error).__name__}: {error}"}
+                print(f"batch: [{len(rows)}/{count}] {name} {describe(rows[name])}", flush=True)
+    ordered = [rows[name] for name in named]
+    write_csv(os.path.join(output, "summary.csv"), ordered)
+    failed = sum(row["status"] == "failed" for row in ordered)
+    print(f"batch: {count - failed} of {count} inputs segmented, {failed} failed; "
+          f"summary in {os.path.join(output, 'summary.csv')}", flush=True)
+    return 1 if failed else 0
+
+
+def main(argv):
+    args = parse_arguments(argv)
+    try:
+        return run(args)
+    except (OSError, ValueError) as error:
+        print(f"movseg batch: error: {error}", file=sys.stderr)
+        return 2

@@ -1,0 +1,74 @@
+#include "evidence/colour_model.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace movseg {
+namespace {
+
+// A histogram learnt from fewer pixels than this says nothing yet.
+constexpr float kMinPixels = 20.f;
+// Keeps a bin never seen from reading as infinitely unlikely.
+constexpr float kBinFloor = 1e-4f;
+
+}  // namespace
+
+ColourModel::ColourModel(const Params& params)
+    : params_(params), shift_(8 - params.colour_bits) {}
+
+int ColourModel::binOf(const cv::Vec3b& c) const {
+  const int bits = 8 - shift_;
+  return ((c[0] >> shift_) << (2 * bits)) | ((c[1] >> shift_) << bits) | (c[2] >> shift_);
+}
+
+void ColourModel::addEvidence(const cv::Mat& bgr, cv::Mat* evidence) const {
+  if (foreground_.empty()) return;
+  const auto weight = static_cast<float>(params_.colour_weight);
+  const auto clip = static_cast<float>(params_.colour_clip);
+  for (int y = 0; y < bgr.rows; ++y) {
+    const auto* c = bgr.ptr<cv::Vec3b>(y);
+    float* e = evidence->ptr<float>(y);
+    for (int x = 0; x < bgr.cols; ++x) {
+      const auto bin = static_cast<size_t>(binOf(c[x]));
+      const float ratio = std::log((foreground_[bin] + kBinFloor) / (background_[bin] + kBinFloor));
+      e[x] += weight * std::clamp(ratio, -clip, clip);
+    }
+  }
+}
+
+void ColourModel::update(const cv::Mat& bgr, const cv::Mat& evidence) {
+  const size_t bins = size_t{1} << (3 * (8 - shift_));
+  count_fg_.assign(bins, 0.f);
+  count_bg_.assign(bins, 0.f);
+  float total_fg = 0, total_bg = 0;
+  const auto confident = static_cast<float>(params_.colour_confidence);
+  for (int y = 0; y < bgr.rows; ++y) {
+    const auto* c = bgr.ptr<cv::Vec3b>(y);
+    const float* e = evidence.ptr<float>(y);
+    for (int x = 0; x < bgr.cols; ++x) {
+      if (e[x] > confident) {
+        ++count_fg_[static_cast<size_t>(binOf(c[x]))];
+        ++total_fg;
+      } else if (e[x] < -confident) {
+        ++count_bg_[static_cast<size_t>(binOf(c[x]))];
+        ++total_bg;
+      }
+    }
+  }
+  if (total_fg < kMinPixels || total_bg < kMinPixels) return;
+  const bool first = foreground_.empty();
+  const float rate = first ? 1.f : static_cast<float>(params_.colour_rate);
+  foreground_.resize(bins, 0.f);
+  background_.resize(bins, 0.f);
+  for (size_t b = 0; b < bins; ++b) {
+    foreground_[b] += rate * (count_fg_[b] / total_fg - foreground_[b]);
+    background_[b] += rate * (count_bg_[b] / total_bg - background_[b]);
+  }
+}
+
+void ColourModel::reset() {
+  foreground_.clear();
+  background_.clear();
+}
+
+}  // namespace movseg

@@ -1,0 +1,37 @@
+// What the moving objects and the background look like, learnt over the stream: two colour
+// histograms, updated from the pixels whose evidence is confident, forgetting at a fixed rate.
+// Their log ratio is evidence for the pixels motion leaves undecided (a slow object's
+// interior, a flat patch the flow cannot follow).
+#pragma once
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "movseg/params.h"
+
+namespace movseg {
+
+class ColourModel {
+ public:
+  explicit ColourModel(const Params& params);
+
+  // Adds colour_weight * clip(log(p_fg(c) / p_bg(c))) to `evidence` at every pixel of `bgr`
+  // (8-bit BGR, evidence's size); nothing before the first update.
+  void addEvidence(const cv::Mat& bgr, cv::Mat* evidence) const;
+
+  // Learns from the pixels of `bgr` whose `evidence` (CV_32F) is beyond +-colour_confidence.
+  void update(const cv::Mat& bgr, const cv::Mat& evidence);
+
+  void reset();
+
+ private:
+  int binOf(const cv::Vec3b& c) const;
+
+  Params params_;
+  int shift_;  // 8 - colour_bits: an 8-bit channel shifted right by this is its bin
+  std::vector<float> foreground_, background_;  // normalised histograms; empty until learnt
+  std::vector<float> count_fg_, count_bg_;      // scratch of update()
+};
+
+}  // namespace movseg

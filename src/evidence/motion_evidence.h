@@ -1,0 +1,30 @@
+// Per-pixel evidence of independent motion, as a log-likelihood ratio of "moves" to "static",
+// from the residual motion the camera model leaves, scaled by what that residual is on the
+// pair's own background (each video, each pair, has its own flow noise, blur and parallax).
+#pragma once
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "movseg/params.h"
+
+namespace movseg {
+
+// The residual that counts as "as large as the background's": the upper `evidence_quantile` of
+// the residual at the samples, at least `evidence_median_factor` times their median (a pair
+// whose samples hardly move must not read every flicker as motion) and a tenth of a pixel.
+float residualScale(std::vector<float> sample_residuals, const Params& params);
+
+// evidence = clip(gain * (residual / scale - offset), min, max), CV_32F.
+void motionEvidence(const cv::Mat& residual, float scale, const Params& params, cv::Mat* evidence);
+
+// The previous frame's mask (CV_8U 0/255) carried to the current frame through `flow`
+// (current -> previous), interpolated (CV_8U); where the flow leaves the previous frame, 0.
+void carryMask(const cv::Mat& previous_mask, const cv::Mat& flow, cv::Mat* carried);
+
+// Adds what the carried mask says to `evidence`: read as a probability p softened to
+// [memory_floor, 1 - memory_floor], it weighs in as memory_weight * log(p / (1 - p)).
+void addMemory(const cv::Mat& carried, const Params& params, cv::Mat* evidence);
+
+}  // namespace movseg

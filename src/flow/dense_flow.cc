@@ -1,0 +1,45 @@
+#include "flow/dense_flow.h"
+
+#include <algorithm>
+
+namespace movseg {
+namespace {
+
+// DIS matches 8x8 patches and refuses images under 12 pixels a side; a frame smaller than two
+// patches a side carries no measurable motion.
+constexpr int kMinSide = 16;
+
+bool measurable(const cv::Size& size) { return std::min(size.width, size.height) >= kMinSide; }
+
+}  // namespace
+
+DenseFlow::DenseFlow(int finest_scale)
+    : dis_(cv::DISOpticalFlow::create(cv::DISOpticalFlow::PRESET_FAST)) {
+  dis_->setFinestScale(finest_scale);
+}
+
+void DenseFlow::next(const cv::Mat& grey, cv::Mat* flow) {
+  CV_Assert(grey.type() == CV_8UC1 && grey.isContinuous());
+  if (previous_grey_.size() != grey.size() || !measurable(grey.size())) {
+    flow->release();
+  } else {
+    // DIS starts from the flow it is given (motion changes little from one pair to the next);
+    // the first pair starts from rest.
+    if (previous_flow_.empty()) {
+      flow->create(grey.size(), CV_32FC2);
+      flow->setTo(cv::Scalar::all(0));
+    } else {
+      previous_flow_.copyTo(*flow);
+    }
+    dis_->calc(grey, previous_grey_, *flow);
+  }
+  previous_grey_ = grey;
+  previous_flow_ = *flow;
+}
+
+void DenseFlow::reset() {
+  previous_grey_.release();
+  previous_flow_.release();
+}
+
+}  // namespace movseg

@@ -1,0 +1,100 @@
+#include "flow/flow_camera.h"
+
+#include <algorithm>
+
+#include "motion/estimators.h"
+#include "motion/model.h"
+#include "motion/ransac.h"
+
+namespace movseg {
+namespace {
+
+// A fit needs this many samples, and this share of them, before the ones believed to move can
+// be left out (a large mover would otherwise leave a few background samples to be outvoted).
+constexpr size_t kMinBackgroundSamples = 50;
+constexpr double kMinBackgroundShare = 0.3;
+
+struct GridSample {
+  cv::Point at;
+  float texture;
+};
+
+std::vector<GridSample> gridSamples(const cv::Mat& texture, int step) {
+  std::vector<GridSample> samples;
+  for (int y = step / 2; y < texture.rows; y += step) {
+    const float* t = texture.ptr<float>(y);
+    for (int x = step / 2; x < texture.cols; x += step) samples.push_back({{x, y}, t[x]});
+  }
+  return samples;
+}
+
+float lowerQuantile(std::vector<GridSample> samples, double q) {
+  if (samples.empty()) return 0.f;
+  const auto k = samples.begin() + static_cast<std::ptrdiff_t>(q * (samples.size() - 1));
+  std::nth_element(samples.begin(), k, samples.end(),
+                   [](const GridSample& a, const GridSample& b) { return a.texture < b.texture; });
+  return k->texture;
+}
+
+}  // namespace
+
+FlowCamera fitFlowCamera(const cv::Mat& flow, const cv::Mat& texture, const cv::Mat& moving,
+                         const Params& params, cv::RNG& rng) {
+  FlowCamera camera;
+  const std::vector<GridSample> grid = gridSamples(texture, params.flow_sample_step);
+  const float flat = lowerQuantile(grid, params.flow_texture_quantile);
+  size_t background = 0;
+  for (const GridSample& s : grid) {
+    if (s.texture < flat) continue;
+    const cv::Vec2f f = flow.at<cv::Vec2f>(s.at);
+    camera.at.emplace_back(s.at);
+    camera.to.emplace_back(static_cast<float>(s.at.x) + f[0], static_cast<float>(s.at.y) + f[1]);
+    camera.background.push_back(moving.empty() || moving.at<uchar>(s.at) <= 127);
+    background += camera.background.back();
+  }
+  if (background < std::max<size_t>(kMinBackgroundSamples,
+                                     static_cast<size_t>(kMinBackgroundShare * camera.at.size()))) {
+    std::fill(camera.background.begin(), camera.background.end(), 1);
+  }
+  std::vector<cv::Point2f> x, y;
+  for (size_t i = 0; i < camera.at.size(); ++i) {
+    if (!camera.background[i]) continue;
+    x.push_back(camera.at[i]);
+    y.push_back(camera.to[i]);
+  }
+  RansacOptions options;
+  options.max_trials = params.ransac_iterations;
+  options.max_error = params.flow_inlier_distance;
+  options.sample_grid = params.ransac_grid;
+  const auto report = Ransac<HomographyEstimator>(options).estimate(x, y, flow.size(), rng);
+  camera.fallback = !report.success;
+  if (report.success) camera.model = report.model;
+  return camera;
+}
+
+void residualMotion(const cv::Mat& flow, const cv::Matx33d& model, cv::Mat* residual) {
+  residual->create(flow.size(), CV_32F);
+  const cv::Matx33f m(model);
+  for (int y = 0; y < flow.rows; ++y) {
+    const auto* f = flow.ptr<cv::Vec2f>(y);
+    float* r = residual->ptr<float>(y);
+    const float fy = static_cast<float>(y);
+    for (int x = 0; x < flow.cols; ++x) {
+      const float fx = static_cast<float>(x);
+      const float w = m(2, 0) * fx + m(2, 1) * fy + m(2, 2);
+      const float dx = f[x][0] - ((m(0, 0) * fx + m(0, 1) * fy + m(0, 2)) / w - fx);
+      const float dy = f[x][1] - ((m(1, 0) * fx + m(1, 1) * fy + m(1, 2)) / w - fy);
+      r[x] = std::sqrt(dx * dx + dy * dy);
+    }
+  }
+}
+
+std::vector<float> residualAtSamples(const FlowCamera& camera) {
+  std::vector<float> residual(camera.at.size());
+  for (size_t i = 0; i < camera.at.size(); ++i) {
+    residual[i] = static_cast<float>(cv::norm(applyModel(camera.model, camera.at[i]) - camera.to[i]));
+  }
+  return residual;
+}
+
+}  // namespace movseg

@@ -1,0 +1,35 @@
+// The camera motion of a pair from its dense flow: a homography fitted by RANSAC (motion/ransac.h)
+// to the flow at a grid of textured pixels, leaving out those believed to move, and what it
+// leaves unexplained — the residual motion — at every pixel.
+#pragma once
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "movseg/params.h"
+
+namespace movseg {
+
+struct FlowCamera {
+  cv::Matx33d model = cv::Matx33d::eye();  // current -> previous frame, working pixels
+  std::vector<cv::Point2f> at;             // the samples: pixels of the current frame,
+  std::vector<cv::Point2f> to;             // where the flow takes them in the previous one,
+  std::vector<char> background;            // and whether each was believed static
+  bool fallback = false;                   // too few samples or no fit: identity
+};
+
+// Samples `flow` (CV_32FC2, current -> previous) every `step` pixels where `texture` (CV_32F,
+// e.g. the smaller eigenvalue of the structure tensor) is above its lower `texture_quantile`
+// among the samples — flat pixels carry no flow information — and fits a homography to those
+// not marked in `moving` (CV_8U, above 127; may be empty), unless that would leave too few.
+FlowCamera fitFlowCamera(const cv::Mat& flow, const cv::Mat& texture, const cv::Mat& moving,
+                         const Params& params, cv::RNG& rng);
+
+// |flow(p) - (model(p) - p)| at every pixel (CV_32F): the motion the camera does not explain.
+void residualMotion(const cv::Mat& flow, const cv::Matx33d& model, cv::Mat* residual);
+
+// The same at the samples of `camera`.
+std::vector<float> residualAtSamples(const FlowCamera& camera);
+
+}  // namespace movseg

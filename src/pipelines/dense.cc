@@ -1,0 +1,122 @@
+// `dense`: movseg's own method. Every pixel's motion is measured (dense flow to the previous
+// frame), the camera's share is removed (a homography fitted to the flow of the background), and
+// what remains becomes evidence of independent motion, scaled by the pair's own background
+// residual. The previous mask, carried by the flow, and colour models learnt over the stream
+// add what one pair cannot see; a graph cut on the evidence and the image's edges makes the mask.
+#include <opencv2/imgproc.hpp>
+
+#include "core/frame.h"
+#include "core/timing.h"
+#include "cut/evidence_cut.h"
+#include "evidence/colour_model.h"
+#include "evidence/motion_evidence.h"
+#include "flow/dense_flow.h"
+#include "flow/flow_camera.h"
+#include "motion/model.h"
+#include "pipelines/pipeline.h"
+
+namespace movseg {
+namespace {
+
+// Phase 1: the frame at the working scale, its texture and its flow to the previous frame.
+struct DenseAnalysis : Analysis {
+  cv::Mat bgr;      // segmentation scale
+  cv::Mat grey;
+  cv::Mat texture;  // smaller eigenvalue of the structure tensor
+  cv::Mat flow;     // to the previous frame; empty on a first frame
+  double scale = 1;  // bgr = the frame scaled by this
+  double prepare_ms = 0, flow_ms = 0;
+};
+
+class DensePipeline : public Pipeline {
+ public:
+  explicit DensePipeline(const Params& params)
+      : params_(params), flow_(params.flow_finest_scale), colour_(params), rng_(params.seed) {}
+
+  std::unique_ptr<Analysis> newAnalysis() const override {
+    return std::make_unique<DenseAnalysis>();
+  }
+
+  void analyse(const cv::Mat& bgr, Analysis* analysis) override {
+    auto& a = static_cast<DenseAnalysis&>(*analysis);
+    Clock::time_point start = Clock::now();
+    const cv::Size size = scaledSize(bgr.size(), params_.segmentation_width);
+    a.scale = static_cast<double>(size.width) / bgr.cols;
+    downscale(bgr, size, &halved_, &a.bgr);
+    cv::cvtColor(a.bgr, a.grey, cv::COLOR_BGR2GRAY);
+    cv::cornerMinEigenVal(a.grey, a.texture, 5);
+    a.prepare_ms = millisecondsSince(start);
+    start = Clock::now();
+    if (a.first_frame) flow_.reset();
+    flow_.next(a.grey, &a.flow);
+    a.flow_ms = millisecondsSince(start);
+  }
+
+  cv::Mat segment(const Analysis& analysis, const DebugSink& debug, Result* result) override {
+    const auto& a = static_cast<const DenseAnalysis&>(analysis);
+    Diagnostics& diag = result->diagnostics;
+    diag.prepare_ms = a.prepare_ms;
+    if (a.first_frame || a.flow.empty()) {
+      colour_.reset();
+      mask_.release();  // no memory yet: the first pair has no mask to carry
+      diag.motion_ms = a.flow_ms;
+      return cv::Mat::zeros(a.bgr.size(), CV_8U);
+    }
+    Clock::time_point start = Clock::now();
+    cv::Mat carried, evidence;
+    if (!mask_.empty()) carryMask(mask_, a.flow, &carried);
+    const FlowCamera camera = fitFlowCamera(a.flow, a.texture, carried, params_, rng_);
+    residualMotion(a.flow, camera.model, &residual_);
+    diag.motion_ms = a.flow_ms + millisecondsSince(start);
+
+    start = Clock::now();
+    const float scale = residualScale(residualAtSamples(camera), params_);
+    motionEvidence(residual_, scale, params_, &evidence);
+    if (!carried.empty()) addMemory(carried, params_, &evidence);
+    cv::Mat unary = evidence.clone();
+    colour_.addEvidence(a.bgr, &unary);
+    unary += params_.foreground_bias;
+    colour_.update(a.bgr, evidence);
+    diag.classify_ms = millisecondsSince(start);
+
+    start = Clock::now();
+    mask_ = cutEvidence(unary, a.bgr, params_.smoothness, &diag.cut_nodes);
+    diag.cut_ms = millisecondsSince(start);
+    debug.put("residual", [&] { return residual_; });
+    describe(camera, scale, a.scale, &diag);
+    return mask_;
+  }
+
+  void reset() override { flow_.reset(); }
+
+  cv::Mat compensatedPreviousFrame() const override { return cv::Mat(); }
+
+ private:
+  static void describe(const FlowCamera& camera, float scale, double working_scale,
+                       Diagnostics* diag) {
+    // The fit maps current to previous working pixels; diagnostics speak of previous to
+    // current, at full resolution.
+    diag->model = rescaleModel(camera.model.inv(), 1.0 / working_scale);
+    diag->model *= 1.0 / diag->model(2, 2);
+    diag->model_is_affine = isAffine(diag->model);
+    diag->matches = static_cast<int>(camera.at.size());
+    diag->motion_fallback = camera.fallback;
+    diag->residual_scale = scale;
+  }
+
+  Params params_;
+  DenseFlow flow_;
+  ColourModel colour_;
+  cv::RNG rng_;
+  cv::Mat mask_;  // the last frame's, at the working scale
+  cv::Mat residual_;
+  cv::Mat halved_;  // scratch of downscale()
+};
+
+}  // namespace
+
+std::unique_ptr<Pipeline> makeDensePipeline(const Params& params) {
+  return std::make_unique<DensePipeline>(params);
+}
+
+}  // namespace movseg

@@ -1,0 +1,101 @@
+#!/usr/bin/env bash
+# The GStreamer element movseg, through GStreamer's own tools.
+# Usage: gst_test.sh CHECK BUILD_DIR WORK_DIR    (CHECK: one of the functions below)
+# GST_PLUGIN_PATH points at the build's plugin; each check has its own registry file.
+set -euo pipefail
+
+check=$1
+build=$2
+work=$3
+cli=$build/movseg
+rm -rf "$work" && mkdir -p "$work"
+export GST_PLUGIN_PATH=$build/gst GST_REGISTRY=$work/registry.bin
+
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+# Every parameter of `movseg segment --help` (--lk-window, ...) without its dashes.
+parameter_names() {
+  "$cli" segment --help | sed -n '/^Parameters/,$p' | grep -o '^ *--[a-z0-9-]*' | sed 's/^ *--//' |
+    grep -v '^set$'
+}
+
+# The pixels of two folders of PNG masks are equal, file by file.
+same_masks() {
+  /usr/bin/python3 - "$1" "$2" <<'PY'
+import sys
+from pathlib import Path
+import cv2, numpy
+a, b = (sorted(Path(d).glob("*.png")) for d in sys.argv[1:])
+assert len(a) == len(b) > 0, f"{len(a)} masks against {len(b)}"
+for x, y in zip(a, b):
+    assert numpy.array_equal(cv2.imread(str(x), cv2.IMREAD_UNCHANGED),
+                             cv2.imread(str(y), cv2.IMREAD_UNCHANGED)), f"{x} differs from {y}"
+PY
+}
+
+# gst-inspect-1.0 finds the element, with a property per parameter of the field table.
+inspect() {
+  gst-inspect-1.0 movseg > "$work/inspect.txt" || fail "gst-inspect-1.0 movseg failed"
+  for name in $(parameter_names) mode post-messages; do
+    grep -q "^  $name *:" "$work/inspect.txt" || fail "no property $name"
+  done
+  grep -q "format: { (string)BGR, (string)BGRx, (string)GRAY8 }" "$work/inspect.txt" ||
+    fail "sink formats"
+  [ "$(parameter_names | wc -l)" -gt 20 ] || fail "too few parameters read from --help"
+}
+
+# multifilesrc ! pngdec ! videoconvert ! movseg ! pngenc ! multifilesink gives the masks of
+# `movseg segment`, with default and with chosen parameters, and a message per frame.
+same_masks_as_segment() {
+  "$cli" synth -o "$work/clip" --frames 10 --size 160x120 >/dev/null
+  local options=("" "motion-model=homography lk-window=15 method=paper")
+  local cli_options=("" "--motion-model homography --lk-window 15")
+  for i in 0 1; do
+    "$cli" segment "$work/clip/frames" -o "$work/cli$i" -q ${cli_options[$i]}
+    mkdir -p "$work/gst$i"
+    # shellcheck disable=SC2086
+    gst-launch-1.0 -m multifilesrc location="$work/clip/frames/%05d.png" index=0 \
+      caps="image/png,framerate=25/1" ! pngdec ! videoconvert ! movseg ${options[$i]} ! \
+      pngenc ! multifilesink location="$work/gst$i/%05d.png" > "$work/launch$i.txt" ||
+      fail "pipeline $i failed: $(tail -3 "$work/launch$i.txt")"
+    same_masks "$work/cli$i" "$work/gst$i" || fail "masks differ (${options[$i]})"
+  done
+  local messages
+  messages=$(grep -c 'from element "movseg0" (element): movseg, frame=(guint64)[0-9]*, timestamp=.*matches=(int)' \
+    "$work/launch0.txt" || true)
+  [ "$messages" -eq 10 ] || fail "$messages element messages with the diagnostics, not 10"
+}
+
+# A live source, in both modes.
+live() {
+  for mode in mask overlay; do
+    gst-launch-1.0 -q videotestsrc is-live=true num-buffers=20 pattern=ball ! \
+      video/x-raw,width=160,height=120,framerate=30/1 ! videoconvert ! movseg mode=$mode ! \
+      videoconvert ! fakesink > "$work/live.txt" 2>&1 ||
+      fail "live pipeline ($mode) failed: $(cat "$work/live.txt")"
+  done
+}
+
+# Video in another format with no videoconvert is refused as the pipeline is made, by a message
+# naming the caps; a bad parameter value stops the pipeline, naming the parameter, unless a good
+# one replaces it.
+refusals() {
+  if gst-launch-1.0 videotestsrc num-buffers=3 ! video/x-raw,format=I420 ! movseg ! fakesink \
+      > "$work/caps.txt" 2>&1; then
+    fail "I420 was accepted"
+  fi
+  grep -q "could not link videotestsrc0 to movseg0, movseg0 can't handle caps video/x-raw, format=(string)I420" \
+    "$work/caps.txt" || fail "no clear message: $(cat "$work/caps.txt")"
+  if gst-launch-1.0 videotestsrc num-buffers=3 ! videoconvert ! movseg lk-window=12 ! fakesink \
+      > "$work/param.txt" 2>&1; then
+    fail "lk-window=12 was accepted"
+  fi
+  grep -q "lk_window must be odd and in \[3, 101\], got 12" "$work/param.txt" ||
+    fail "no clear message: $(cat "$work/param.txt")"
+  gst-launch-1.0 -q videotestsrc num-buffers=3 ! videoconvert ! movseg lk-window=12 lk-window=13 ! \
+    fakesink > "$work/param.txt" 2>&1 || fail "a corrected value is still refused"
+}
+
+"$check"
+rm -rf "$work"
+echo "ok: $check"

@@ -1,0 +1,109 @@
+"""python3 -m movseg batch: three inputs, one of them corrupt, on a 2-worker local cluster; then
+the same through a scheduler and a worker started as docs/usage.md shows."""
+import csv
+import json
+import os
+import shutil
+import socket
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+from conftest import read_masks
+
+pytest.importorskip("distributed")
+
+
+def batch(*args):
+    return subprocess.run([sys.executable, "-m", "movseg", "batch", *args],
+                          capture_output=True, text=True, timeout=240)
+
+
+def summary(output):
+    with open(output / "summary.csv", encoding="utf-8") as rows:
+        return {row["name"]: row for row in csv.DictReader(rows)}
+
+
+@pytest.fixture(scope="module")
+def inputs(cli, tmp_path_factory):
+    """data/walk and data/run: synthetic sequences (frames/, masks/); bad.mp4: not a video (with
+    ground truth in data/bad); inputs.txt lists walk's frames and bad.mp4."""
+    data = tmp_path_factory.mktemp("data")
+    for name, seed in [("walk", "1"), ("run", "2")]:
+        subprocess.run([cli, "synth", "-o", str(data / name), "--frames", "6", "--size", "128x96",
+                        "--seed", seed], check=True, capture_output=True)
+        subprocess.run([cli, "segment", str(data / name / "frames"), "-o", str(data / name / "cli"),
+                        "-q"], check=True, capture_output=True)
+    (data / "bad.mp4").write_bytes(b"\x00\x00\x00\x18ftypmp42" + bytes(range(256)) * 8)
+    shutil.copytree(data / "walk" / "masks", data / "bad" / "masks")  # its ground truth
+    (data / "inputs.txt").write_text("# two of the three\nwalk/frames\n\nbad.mp4\n")
+    return data
+
+
+def test_corrupt_input_fails_alone_and_reruns_skip_finished_ones(inputs, tmp_path):
+    out = tmp_path / "out"
+    done = batch(str(inputs / "inputs.txt"), str(inputs / "run/frames"), "-o", str(out),
+                 "--workers", "2", "--gt", str(inputs))
+    assert done.returncode == 1, done.stdout + done.stderr
+    rows = summary(out)
+    assert [rows[name]["status"] for name in ("walk", "bad", "run")] == ["done", "failed", "done"]
+    assert rows["bad"]["error"].startswith("movseg: error:"), rows["bad"]
+    assert "batch: [3/3]" in done.stdout and "2 of 3 inputs segmented, 1 failed" in done.stdout
+    for name in ("walk", "run"):
+        masks = read_masks(out / name / "masks")
+        assert len(masks) == 6 and all(np.array_equal(a, b) for a, b in
+                                       zip(masks, read_masks(inputs / name / "cli")))
+        assert len((out / name / "stats.jsonl").read_text().splitlines()) == 6
+        assert float(rows[name]["J"]) > 0.5 and float(rows[name]["F"]) > 0
+        assert json.loads((out / name / "summary.json").read_text())["frames"] == 6
+    assert sorted(os.listdir(out)) == ["run", "summary.csv", "walk"]  # no partial folder left
+
+    again = batch(str(inputs / "inputs.txt"), str(inputs / "run/frames"), "-o", str(out),
+                  "--workers", "2")
+    assert again.returncode == 1
+    assert again.stdout.count("(finished before; --force redoes it)") == 2
+    assert summary(out)["walk"]["status"] == "skipped"
+
+    stamp = (out / "walk" / "summary.json").stat().st_mtime_ns
+    forced = batch(str(inputs / "walk/frames"), "-o", str(out), "--workers", "2", "--force",
+                   "--method", "diff", "--set", "lk_window=15")
+    assert forced.returncode == 0, forced.stdout + forced.stderr
+    assert (out / "walk" / "summary.json").stat().st_mtime_ns != stamp
+
+
+def test_two_inputs_of_one_name_are_refused(inputs, tmp_path):
+    (tmp_path / "walk").mkdir()
+    done = batch(str(inputs / "walk"), str(tmp_path / "walk"), "-o", str(tmp_path / "out"))
+    assert done.returncode == 2
+    assert done.stderr.startswith("movseg batch: error: ") and "rename one" in done.stderr
+
+
+def free_port():
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        return probe.getsockname()[1]
+
+
+def test_runs_on_a_scheduler_and_worker_started_by_hand(inputs, tmp_path):
+    address = f"tcp://127.0.0.1:{free_port()}"
+    logs = open(tmp_path / "cluster.log", "w")
+    scheduler = subprocess.Popen(["dask", "scheduler", "--host", "127.0.0.1", "--port",
+                                  address.rsplit(":", 1)[1], "--no-dashboard"],
+                                 stdout=logs, stderr=logs)
+    worker = subprocess.Popen(["dask", "worker", address, "--nworkers", "1", "--nthreads", "1",
+                               "--no-dashboard"], stdout=logs, stderr=logs)
+    try:
+        time.sleep(1)
+        done = batch(str(inputs / "run/frames"), "-o", str(tmp_path / "out"),
+                     "--scheduler", address)
+        log = (tmp_path / "cluster.log").read_text()
+        assert done.returncode == 0, done.stdout + done.stderr + log
+        assert summary(tmp_path / "out")["run"]["status"] == "done"
+    finally:
+        for process in (worker, scheduler):
+            process.terminate()
+            process.wait(timeout=30)
+        logs.close()
