@@ -177,7 +177,11 @@ void VideoDecoder::convert(cv::Mat* bgr) {
     throw std::runtime_error("cannot convert a " + std::to_string(f->width) + "x" +
                              std::to_string(f->height) + " frame to BGR");
   }
-  cv::Mat out(f->height, f->width, CV_8UC3);
+  // swscale's SIMD converters write whole blocks of pixels: a 24x16 yuv420p frame wrote 24 bytes
+  // past a packed buffer's end. Rows padded to 16 pixels, and a spare row, take the excess.
+  const int padded_width = (f->width + 15) / 16 * 16;
+  cv::Mat buffer(f->height + 1, padded_width, CV_8UC3);
+  cv::Mat out = buffer(cv::Rect(0, 0, f->width, f->height));
   uint8_t* planes[4] = {out.data, nullptr, nullptr, nullptr};
   const int strides[4] = {static_cast<int>(out.step), 0, 0, 0};
   sws_scale(ff_->sws, f->data, f->linesize, 0, f->height, planes, strides);
