@@ -3,8 +3,10 @@
 // what remains becomes evidence of independent motion, scaled by the pair's own background
 // residual. The previous mask, carried by the flow, and colour models learnt over the stream
 // add what one pair cannot see; a graph cut on the evidence and the image's edges makes the mask.
+// A scene cut empties the mask and the memory: what the new scene moves is learnt anew.
 #include <opencv2/imgproc.hpp>
 
+#include "classify/scene_cut.h"
 #include "core/frame.h"
 #include "core/timing.h"
 #include "cut/evidence_cut.h"
@@ -12,6 +14,7 @@
 #include "evidence/motion_evidence.h"
 #include "flow/dense_flow.h"
 #include "flow/flow_camera.h"
+#include "motion/compensation.h"
 #include "motion/model.h"
 #include "pipelines/pipeline.h"
 
@@ -56,21 +59,25 @@ class DensePipeline : public Pipeline {
     const auto& a = static_cast<const DenseAnalysis&>(analysis);
     Diagnostics& diag = result->diagnostics;
     diag.prepare_ms = a.prepare_ms;
-    if (a.first_frame || a.flow.empty()) {
-      colour_.reset();
-      mask_.release();  // no memory yet: the first pair has no mask to carry
-      diag.motion_ms = a.flow_ms;
-      return cv::Mat::zeros(a.bgr.size(), CV_8U);
-    }
+    diag.motion_ms = a.flow_ms;
+    cv::swap(previous_bgr_, bgr_);
+    a.bgr.copyTo(bgr_);  // the analysis is reused for a later frame
+    if (a.first_frame || a.flow.empty()) return forget();
     Clock::time_point start = Clock::now();
     cv::Mat carried, evidence;
     if (!mask_.empty()) carryMask(mask_, a.flow, &carried);
     const FlowCamera camera = fitFlowCamera(a.flow, a.texture, carried, params_, rng_);
     residualMotion(a.flow, camera.model, &residual_);
-    diag.motion_ms = a.flow_ms + millisecondsSince(start);
+    diag.motion_ms += millisecondsSince(start);
+    describe(camera, a.scale, &diag);
 
     start = Clock::now();
+    // The fit maps current to previous working pixels; eq. (4) warps previous to current.
+    const cv::Matx33d to_current = camera.model.inv();
+    diag.scene_cut = isSceneCut(compensatedDifference(previous_bgr_, bgr_, to_current), to_current);
+    if (diag.scene_cut) return forget();
     const float scale = residualScale(residualAtSamples(camera), params_);
+    diag.residual_scale = scale;
     motionEvidence(residual_, scale, params_, &evidence);
     if (!carried.empty()) addMemory(carried, params_, &evidence);
     cv::Mat unary = evidence.clone();
@@ -83,7 +90,6 @@ class DensePipeline : public Pipeline {
     mask_ = cutEvidence(unary, a.bgr, params_.smoothness, &diag.cut_nodes);
     diag.cut_ms = millisecondsSince(start);
     debug.put("residual", [&] { return residual_; });
-    describe(camera, scale, a.scale, &diag);
     return mask_;
   }
 
@@ -92,8 +98,14 @@ class DensePipeline : public Pipeline {
   cv::Mat compensatedPreviousFrame() const override { return cv::Mat(); }
 
  private:
-  static void describe(const FlowCamera& camera, float scale, double working_scale,
-                       Diagnostics* diag) {
+  // A stream's first pair, or the first after a scene cut: no mask to carry, no colours known.
+  cv::Mat forget() {
+    colour_.reset();
+    mask_.release();
+    return cv::Mat::zeros(bgr_.size(), CV_8U);
+  }
+
+  static void describe(const FlowCamera& camera, double working_scale, Diagnostics* diag) {
     // The fit maps current to previous working pixels; diagnostics speak of previous to
     // current, at full resolution.
     diag->model = rescaleModel(camera.model.inv(), 1.0 / working_scale);
@@ -101,7 +113,6 @@ class DensePipeline : public Pipeline {
     diag->model_is_affine = isAffine(diag->model);
     diag->matches = static_cast<int>(camera.at.size());
     diag->motion_fallback = camera.fallback;
-    diag->residual_scale = scale;
   }
 
   Params params_;
@@ -110,6 +121,7 @@ class DensePipeline : public Pipeline {
   cv::RNG rng_;
   cv::Mat mask_;  // the last frame's, at the working scale
   cv::Mat residual_;
+  cv::Mat bgr_, previous_bgr_;  // the last two frames segmented, at the working scale
   cv::Mat halved_;  // scratch of downscale()
 };
 
