@@ -60,10 +60,10 @@ test-sanitize: deps
 	  UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 ctest --output-on-failure -j $(JOBS)
 
 # ThreadSanitizer on the tests that run threads: Segmenters on concurrent threads and with two
-# OpenCV threads, a decoder stopped from another thread. Only those run: the rest of the suite
+# OpenCV threads, a decoder stopped from another thread, StreamSegmenters on two threads. Only those run: the rest of the suite
 # is single-threaded, and the sanitizer build above covers it. Not the CLI: under TSan it
 # reports a lock-order inversion inside GDAL, an OpenCV codec dependency (docs/reliability.md).
-TSAN_TESTS = Determinism.OneOrTwo*:Determinism.TwoSegmenters*:VideoDecoder.AStopFlag*
+TSAN_TESTS = Determinism.OneOrTwo*:Determinism.TwoSegmenters*:VideoDecoder.AStopFlag*:EveryMethod/Stream.*_2threads
 test-tsan: deps
 	@echo "test-tsan: ThreadSanitizer build in $(TSAN_DIR)"
 	@cmake -S . -B $(TSAN_DIR) $(subst address$(comma)undefined,thread,$(SANITIZE_FLAGS)) >/dev/null

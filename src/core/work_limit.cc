@@ -11,9 +11,10 @@ namespace {
 // Each budget is about a hundred times what the defaults cost at a 320x240 working scale, and
 // bounds a stage's time to a few seconds on one core (docs/reliability.md has the figures).
 constexpr double kAlignmentPixels = 2e6;       // pixels of the alignment scale
-constexpr double kFeatures = 30000;            // corners and edge points detected per frame
+constexpr double kFeatures = 30000;            // corners and edge points, or flow samples
 constexpr double kTrackingWork = 2e7;          // tracked x (LK window area x levels + ZNCC area)
-constexpr double kRansacWork = 1e7;            // hypotheses x outer rounds x tracked features
+constexpr double kRansacWork = 1e7;            // hypotheses x outer rounds x tracked features,
+                                               // or hypotheses x flow samples
 constexpr double kSegmentationPixels = 1e6;    // pixels of the segmentation scale
 constexpr double kBlurWork = 2e7;              // segmentation pixels x blur sigma
 constexpr double kCutNodes = 400000;           // max-flow nodes, estimated from the band
@@ -54,14 +55,34 @@ void limitTracking(Params* p) {
   p->ransac_iterations = std::min(p->ransac_iterations, std::max(1, hypotheses));
 }
 
-// A smaller segmentation scale, then less blur and a narrower band for the cut.
-void limitSegmentation(cv::Size frame, Params* p) {
-  p->segmentation_width = widthWithin(frame, p->segmentation_width, kSegmentationPixels);
-  const cv::Size seg = scaledSize(frame, p->segmentation_width);
+// The camera tracker's stages (paper, diff, mog2-comp): alignment scale, features, tracking and
+// the two-layer RANSAC.
+void limitTracker(cv::Size frame, Params* p) {
+  p->alignment_width = widthWithin(frame, p->alignment_width, kAlignmentPixels);
+  limitFeatures(scaledSize(frame, p->alignment_width), p);
+  limitTracking(p);
+}
+
+// Less blur at the segmentation scale `seg` (the tracker prepares eq. (4)'s blurred images).
+void limitBlur(cv::Size seg, Params* p) {
   p->difference_blur = std::min(p->difference_blur, kBlurWork / area(seg));
+}
+
+// A narrower band for the paper's cut.
+void limitCut(cv::Size seg, Params* p) {
   if (cutNodes(seg, p->cut_band) > kCutNodes) {
     p->cut_band = std::max(1, static_cast<int>(kCutNodes / (32.0 * (seg.width + seg.height))));
   }
+}
+
+// Dense: the camera is fitted to one flow sample every flow_sample_step pixels, by
+// ransac_iterations hypotheses.
+void limitFlowCamera(cv::Size seg, Params* p) {
+  const int step = static_cast<int>(std::ceil(std::sqrt(area(seg) / kFeatures)));
+  p->flow_sample_step = std::clamp(step, p->flow_sample_step, 64);
+  const double samples = area(seg) / (static_cast<double>(p->flow_sample_step) * p->flow_sample_step);
+  p->ransac_iterations =
+      std::min(p->ransac_iterations, std::max(1, static_cast<int>(kRansacWork / samples)));
 }
 
 bool sameWork(const Params& a, const Params& b) {
@@ -70,17 +91,31 @@ bool sameWork(const Params& a, const Params& b) {
          a.max_tracked_features == b.max_tracked_features &&
          a.ransac_iterations == b.ransac_iterations &&
          a.segmentation_width == b.segmentation_width && a.difference_blur == b.difference_blur &&
-         a.cut_band == b.cut_band;
+         a.cut_band == b.cut_band && a.flow_sample_step == b.flow_sample_step;
 }
 
 }  // namespace
 
 WorkLimit withinWorkLimit(const Params& params, cv::Size frame) {
   WorkLimit limit{params, false};
-  limit.params.alignment_width = widthWithin(frame, params.alignment_width, kAlignmentPixels);
-  limitFeatures(scaledSize(frame, limit.params.alignment_width), &limit.params);
-  limitTracking(&limit.params);
-  limitSegmentation(frame, &limit.params);
+  Params& p = limit.params;
+  // Every method works at the segmentation scale; the rest is the method's own.
+  p.segmentation_width = widthWithin(frame, p.segmentation_width, kSegmentationPixels);
+  const cv::Size seg = scaledSize(frame, p.segmentation_width);
+  switch (p.method) {
+    case Method::kPaper:
+      limitTracker(frame, &p);
+      limitBlur(seg, &p);
+      limitCut(seg, &p);
+      break;
+    case Method::kDiff:
+    case Method::kMog2Compensated:
+      limitTracker(frame, &p);
+      limitBlur(seg, &p);
+      break;
+    case Method::kMog2: break;
+    case Method::kDense: limitFlowCamera(seg, &p); break;
+  }
   limit.lowered = !sameWork(limit.params, params);
   return limit;
 }
