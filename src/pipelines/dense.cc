@@ -28,6 +28,26 @@ struct DenseAnalysis : Analysis {
   double prepare_ms = 0, flow_ms = 0;
 };
 
+// Copies the frame's grey image for the next pair on every way out of segment().
+struct Remember {
+  const cv::Mat& grey;
+  cv::Mat* previous;
+  ~Remember() { grey.copyTo(*previous); }
+};
+
+// The residuals at the samples the photometric check does not confirm as moving (less than
+// half confirmed): the background's, whatever the movers' share of the frame, so that the
+// scale is the background's spread and not the movers' speed. When nearly everything is
+// confirmed (under a quarter left), the check says nothing and all samples count.
+std::vector<float> unconfirmedResiduals(const FlowCamera& camera, const cv::Mat& confirmation) {
+  const std::vector<float> all = residualAtSamples(camera);
+  std::vector<float> kept;
+  for (size_t i = 0; i < all.size(); ++i) {
+    if (confirmation.at<float>(cv::Point(camera.at[i])) < 0.5f) kept.push_back(all[i]);
+  }
+  return kept.size() >= all.size() / 4 ? kept : all;
+}
+
 class DensePipeline : public Pipeline {
  public:
   explicit DensePipeline(const Params& params)
@@ -56,6 +76,7 @@ class DensePipeline : public Pipeline {
     const auto& a = static_cast<const DenseAnalysis&>(analysis);
     Diagnostics& diag = result->diagnostics;
     diag.prepare_ms = a.prepare_ms;
+    const Remember remember{a.grey, &previous_grey_};
     if (a.first_frame || a.flow.empty()) {
       colour_.reset();
       mask_.release();  // no memory yet: the first pair has no mask to carry
@@ -64,14 +85,18 @@ class DensePipeline : public Pipeline {
     }
     Clock::time_point start = Clock::now();
     cv::Mat carried, evidence;
-    if (!mask_.empty()) carryMask(mask_, a.flow, &carried);
+    flowMap(a.flow, &flow_map_);
+    if (!mask_.empty()) carryMask(mask_, flow_map_, &carried);
     const FlowCamera camera = fitFlowCamera(a.flow, a.texture, carried, params_, rng_);
     residualMotion(a.flow, camera.model, &residual_);
+    cameraMap(camera.model, a.grey.size(), &camera_map_);
     diag.motion_ms = a.flow_ms + millisecondsSince(start);
 
     start = Clock::now();
-    const float scale = residualScale(residualAtSamples(camera), params_);
+    photometric_.confirm(a.grey, previous_grey_, flow_map_, camera_map_, params_, &confirmation_);
+    const float scale = residualScale(unconfirmedResiduals(camera, confirmation_), params_);
     motionEvidence(residual_, scale, params_, &evidence);
+    confirmMotion(confirmation_, &evidence);
     if (!carried.empty()) addMemory(carried, params_, &evidence);
     cv::Mat unary = evidence.clone();
     colour_.addEvidence(a.bgr, &unary);
@@ -83,6 +108,11 @@ class DensePipeline : public Pipeline {
     mask_ = cutEvidence(unary, a.bgr, params_.smoothness, &diag.cut_nodes);
     diag.cut_ms = millisecondsSince(start);
     debug.put("residual", [&] { return residual_; });
+    debug.put("confirmation", [&] {
+      cv::Mat picture;
+      confirmation_.convertTo(picture, CV_8U, 255);
+      return picture;
+    });
     describe(camera, scale, a.scale, &diag);
     return mask_;
   }
@@ -109,7 +139,10 @@ class DensePipeline : public Pipeline {
   ColourModel colour_;
   cv::RNG rng_;
   cv::Mat mask_;  // the last frame's, at the working scale
-  cv::Mat residual_;
+  cv::Mat residual_, confirmation_;
+  cv::Mat flow_map_, camera_map_;
+  PhotometricCheck photometric_;
+  cv::Mat previous_grey_;  // the last segmented frame's, at the working scale
   cv::Mat halved_;  // scratch of downscale()
 };
 
