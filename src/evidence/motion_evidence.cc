@@ -42,15 +42,70 @@ void motionEvidence(const cv::Mat& residual, float scale, const Params& params, 
   }
 }
 
-void carryMask(const cv::Mat& previous_mask, const cv::Mat& flow, cv::Mat* carried) {
-  cv::Mat map(flow.size(), CV_32FC2);
-  for (int y = 0; y < flow.rows; ++y) {
-    const auto* f = flow.ptr<cv::Vec2f>(y);
-    auto* m = map.ptr<cv::Vec2f>(y);
-    for (int x = 0; x < flow.cols; ++x) m[x] = cv::Vec2f(x + f[x][0], y + f[x][1]);
+namespace {
+
+// Side of the patch the two explanations are compared over: 5x5, as the texture measure's.
+constexpr int kPatch = 5;
+
+// The previous frame brought through `map`, its absolute difference to `grey`, averaged over
+// the patch (CV_32F).
+void patchError(const cv::Mat& grey, const cv::Mat& previous_grey, const cv::Mat& map,
+                cv::Mat* warped, cv::Mat* error) {
+  cv::remap(previous_grey, *warped, map, cv::noArray(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+  cv::absdiff(grey, *warped, *warped);
+  cv::blur(*warped, *error, cv::Size(kPatch, kPatch));  // 8-bit: rounded, as fine as noise
+}
+
+// The median of an 8-bit image.
+int median8(const cv::Mat& image) {
+  int histogram[256] = {0};
+  for (int y = 0; y < image.rows; ++y) {
+    const uchar* row = image.ptr<uchar>(y);
+    for (int x = 0; x < image.cols; ++x) ++histogram[row[x]];
   }
-  cv::remap(previous_mask, *carried, map, cv::noArray(), cv::INTER_LINEAR, cv::BORDER_CONSTANT,
-            cv::Scalar(0));
+  const long half = static_cast<long>(image.total()) / 2;
+  long seen = 0;
+  for (int level = 0; level < 256; ++level) {
+    seen += histogram[level];
+    if (seen > half) return level;
+  }
+  return 255;
+}
+
+}  // namespace
+
+void PhotometricCheck::confirm(const cv::Mat& grey, const cv::Mat& previous_grey,
+                               const cv::Mat& flow_map, const cv::Mat& camera_map,
+                               const Params& params, cv::Mat* confirmation) {
+  patchError(grey, previous_grey, flow_map, &by_flow_, &flow_error_);
+  patchError(grey, previous_grey, camera_map, &by_camera_, &camera_error_);
+  // One grey level at least: an 8-bit difference cannot resolve less.
+  const float margin = static_cast<float>(params.photometric_margin) *
+                       static_cast<float>(std::max(median8(camera_error_), 1));
+  confirmation->create(grey.size(), CV_32F);
+  for (int y = 0; y < grey.rows; ++y) {
+    const uchar* f = flow_error_.ptr<uchar>(y);
+    const uchar* c = camera_error_.ptr<uchar>(y);
+    float* out = confirmation->ptr<float>(y);
+    for (int x = 0; x < grey.cols; ++x) {
+      out[x] = std::clamp(static_cast<float>(c[x] - f[x]) / margin, 0.f, 1.f);
+    }
+  }
+}
+
+void confirmMotion(const cv::Mat& confirmation, cv::Mat* evidence) {
+  for (int y = 0; y < evidence->rows; ++y) {
+    const float* c = confirmation.ptr<float>(y);
+    float* e = evidence->ptr<float>(y);
+    for (int x = 0; x < evidence->cols; ++x) {
+      if (e[x] > 0) e[x] *= c[x];
+    }
+  }
+}
+
+void carryMask(const cv::Mat& previous_mask, const cv::Mat& flow_map, cv::Mat* carried) {
+  cv::remap(previous_mask, *carried, flow_map, cv::noArray(), cv::INTER_LINEAR,
+            cv::BORDER_CONSTANT, cv::Scalar(0));
 }
 
 void addMemory(const cv::Mat& carried, const Params& params, cv::Mat* evidence) {  // log(p / (1 - p)) per 8-bit level of the carried mask, p softened towards one half.

@@ -19,9 +19,29 @@ float residualScale(std::vector<float> sample_residuals, const Params& params);
 // evidence = clip(gain * (residual / scale - offset), min, max), CV_32F.
 void motionEvidence(const cv::Mat& residual, float scale, const Params& params, cv::Mat* evidence);
 
-// The previous frame's mask (CV_8U 0/255) carried to the current frame through `flow`
-// (current -> previous), interpolated (CV_8U); where the flow leaves the previous frame, 0.
-void carryMask(const cv::Mat& previous_mask, const cv::Mat& flow, cv::Mat* carried);
+// Flow bleeds: where a patch is flat, DIS gives it the motion of its textured neighbour, and
+// a residual alone cannot tell. The previous frame brought to the current one by the camera and
+// by the flow answers it: where the camera explains the pixels as well as the flow does, there
+// is no evidence of motion, however large the residual. Both explanations are scored by their
+// mean absolute difference over a patch; the confirmation is how much the flow's is smaller, in
+// units of `photometric_margin` times the frame's median difference under the camera (its
+// noise, blur and gain change), clipped to [0, 1].
+class PhotometricCheck {
+ public:
+  // `grey`, `previous_grey`: CV_8U; the maps as flowMap() and cameraMap() make them.
+  void confirm(const cv::Mat& grey, const cv::Mat& previous_grey, const cv::Mat& flow_map,
+               const cv::Mat& camera_map, const Params& params, cv::Mat* confirmation);
+
+ private:
+  cv::Mat by_flow_, by_camera_, flow_error_, camera_error_;
+};
+
+// Positive evidence scaled by the confirmation (CV_32F, [0, 1]); negative evidence is kept.
+void confirmMotion(const cv::Mat& confirmation, cv::Mat* evidence);
+
+// The previous frame's mask (CV_8U 0/255) carried to the current frame through the flow's map
+// (flowMap()), interpolated (CV_8U); where the flow leaves the previous frame, 0.
+void carryMask(const cv::Mat& previous_mask, const cv::Mat& flow_map, cv::Mat* carried);
 
 // Adds what the carried mask says to `evidence`: read as a probability p softened to
 // [memory_floor, 1 - memory_floor], it weighs in as memory_weight * log(p / (1 - p)).

@@ -89,6 +89,30 @@ void residualMotion(const cv::Mat& flow, const cv::Matx33d& model, cv::Mat* resi
   }
 }
 
+void flowMap(const cv::Mat& flow, cv::Mat* map) {
+  map->create(flow.size(), CV_32FC2);
+  for (int y = 0; y < flow.rows; ++y) {
+    const auto* f = flow.ptr<cv::Vec2f>(y);
+    auto* m = map->ptr<cv::Vec2f>(y);
+    for (int x = 0; x < flow.cols; ++x) m[x] = cv::Vec2f(x + f[x][0], y + f[x][1]);
+  }
+}
+
+void cameraMap(const cv::Matx33d& model, cv::Size size, cv::Mat* map) {
+  map->create(size, CV_32FC2);
+  const cv::Matx33f m(model);
+  for (int y = 0; y < size.height; ++y) {
+    auto* out = map->ptr<cv::Vec2f>(y);
+    const float fy = static_cast<float>(y);
+    for (int x = 0; x < size.width; ++x) {
+      const float fx = static_cast<float>(x);
+      const float w = m(2, 0) * fx + m(2, 1) * fy + m(2, 2);
+      out[x] = cv::Vec2f((m(0, 0) * fx + m(0, 1) * fy + m(0, 2)) / w,
+                         (m(1, 0) * fx + m(1, 1) * fy + m(1, 2)) / w);
+    }
+  }
+}
+
 std::vector<float> residualAtSamples(const FlowCamera& camera) {
   std::vector<float> residual(camera.at.size());
   for (size_t i = 0; i < camera.at.size(); ++i) {

@@ -29,6 +29,11 @@ FlowCamera fitFlowCamera(const cv::Mat& flow, const cv::Mat& texture, const cv::
 // |flow(p) - (model(p) - p)| at every pixel (CV_32F): the motion the camera does not explain.
 void residualMotion(const cv::Mat& flow, const cv::Matx33d& model, cv::Mat* residual);
 
+// Where each pixel of the current frame came from in the previous one (CV_32FC2, for
+// cv::remap): p + flow(p) by the flow, model(p) by the camera.
+void flowMap(const cv::Mat& flow, cv::Mat* map);
+void cameraMap(const cv::Matx33d& model, cv::Size size, cv::Mat* map);
+
 // The same at the samples of `camera`.
 std::vector<float> residualAtSamples(const FlowCamera& camera);
 

@@ -31,6 +31,35 @@ struct DenseAnalysis : Analysis {
   double prepare_ms = 0, flow_ms = 0;
 };
 
+// The last segmented frame at the working scale, for the next pair (the analysis holding it is
+// reused for a later frame).
+struct PreviousFrame {
+  cv::Mat bgr, grey;
+};
+
+// Copies the frame's images into `previous` on every way out of segment().
+struct Remember {
+  const DenseAnalysis& frame;
+  PreviousFrame* previous;
+  ~Remember() {
+    frame.bgr.copyTo(previous->bgr);
+    frame.grey.copyTo(previous->grey);
+  }
+};
+
+// The residuals at the samples the photometric check does not confirm as moving (less than
+// half confirmed): the background's, whatever the movers' share of the frame, so that the
+// scale is the background's spread and not the movers' speed. When nearly everything is
+// confirmed (under a quarter left), the check says nothing and all samples count.
+std::vector<float> unconfirmedResiduals(const FlowCamera& camera, const cv::Mat& confirmation) {
+  const std::vector<float> all = residualAtSamples(camera);
+  std::vector<float> kept;
+  for (size_t i = 0; i < all.size(); ++i) {
+    if (confirmation.at<float>(cv::Point(camera.at[i])) < 0.5f) kept.push_back(all[i]);
+  }
+  return kept.size() >= all.size() / 4 ? kept : all;
+}
+
 class DensePipeline : public Pipeline {
  public:
   explicit DensePipeline(const Params& params)
@@ -60,25 +89,29 @@ class DensePipeline : public Pipeline {
     Diagnostics& diag = result->diagnostics;
     diag.prepare_ms = a.prepare_ms;
     diag.motion_ms = a.flow_ms;
-    cv::swap(previous_bgr_, bgr_);
-    a.bgr.copyTo(bgr_);  // the analysis is reused for a later frame
-    if (a.first_frame || a.flow.empty()) return forget();
+    const Remember remember{a, &previous_};
+    if (a.first_frame || a.flow.empty()) return forget(a.bgr.size());
     Clock::time_point start = Clock::now();
     cv::Mat carried, evidence;
-    if (!mask_.empty()) carryMask(mask_, a.flow, &carried);
+    flowMap(a.flow, &flow_map_);
+    if (!mask_.empty()) carryMask(mask_, flow_map_, &carried);
     const FlowCamera camera = fitFlowCamera(a.flow, a.texture, carried, params_, rng_);
     residualMotion(a.flow, camera.model, &residual_);
+    cameraMap(camera.model, a.grey.size(), &camera_map_);
     diag.motion_ms += millisecondsSince(start);
     describe(camera, a.scale, &diag);
 
     start = Clock::now();
     // The fit maps current to previous working pixels; eq. (4) warps previous to current.
     const cv::Matx33d to_current = camera.model.inv();
-    diag.scene_cut = isSceneCut(compensatedDifference(previous_bgr_, bgr_, to_current), to_current);
-    if (diag.scene_cut) return forget();
-    const float scale = residualScale(residualAtSamples(camera), params_);
+    diag.scene_cut =
+        isSceneCut(compensatedDifference(previous_.bgr, a.bgr, to_current), to_current);
+    if (diag.scene_cut) return forget(a.bgr.size());
+    photometric_.confirm(a.grey, previous_.grey, flow_map_, camera_map_, params_, &confirmation_);
+    const float scale = residualScale(unconfirmedResiduals(camera, confirmation_), params_);
     diag.residual_scale = scale;
     motionEvidence(residual_, scale, params_, &evidence);
+    confirmMotion(confirmation_, &evidence);
     if (!carried.empty()) addMemory(carried, params_, &evidence);
     cv::Mat unary = evidence.clone();
     colour_.addEvidence(a.bgr, &unary);
@@ -90,6 +123,11 @@ class DensePipeline : public Pipeline {
     mask_ = cutEvidence(unary, a.bgr, params_.smoothness, &diag.cut_nodes);
     diag.cut_ms = millisecondsSince(start);
     debug.put("residual", [&] { return residual_; });
+    debug.put("confirmation", [&] {
+      cv::Mat picture;
+      confirmation_.convertTo(picture, CV_8U, 255);
+      return picture;
+    });
     return mask_;
   }
 
@@ -99,10 +137,10 @@ class DensePipeline : public Pipeline {
 
  private:
   // A stream's first pair, or the first after a scene cut: no mask to carry, no colours known.
-  cv::Mat forget() {
+  cv::Mat forget(cv::Size size) {
     colour_.reset();
     mask_.release();
-    return cv::Mat::zeros(bgr_.size(), CV_8U);
+    return cv::Mat::zeros(size, CV_8U);
   }
 
   static void describe(const FlowCamera& camera, double working_scale, Diagnostics* diag) {
@@ -120,8 +158,10 @@ class DensePipeline : public Pipeline {
   ColourModel colour_;
   cv::RNG rng_;
   cv::Mat mask_;  // the last frame's, at the working scale
-  cv::Mat residual_;
-  cv::Mat bgr_, previous_bgr_;  // the last two frames segmented, at the working scale
+  cv::Mat residual_, confirmation_;
+  cv::Mat flow_map_, camera_map_;
+  PhotometricCheck photometric_;
+  PreviousFrame previous_;
   cv::Mat halved_;  // scratch of downscale()
 };
 
