@@ -30,7 +30,7 @@ done
 cli=$root/usr/bin/movseg
 "$cli" synth -o "$root/clip" --frames 4 --size 96x72 >/dev/null
 "$cli" segment "$root/clip/frames" -o "$root/masks" -q
-[ "$(ls "$root/masks" | wc -l)" -eq 4 ] || fail "the packaged CLI wrote no masks"
+[ "$(ls "$root/masks"/*.png | wc -l)" -eq 4 ] || fail "the packaged CLI did not write 4 masks"
 
 python() { PYTHONPATH=$root/$python_dir PYTHONDONTWRITEBYTECODE=1 /usr/bin/python3 "$@"; }
 [ "$(python -c 'import movseg.__main__ as m; print(m.cli_path())')" = "$cli" ] ||
