@@ -14,8 +14,19 @@
 #include <random>
 
 #include <gtest/gtest.h>
+#include <opencv2/core/utility.hpp>
 
 namespace movseg::test {
+
+#ifdef __SANITIZE_THREAD__
+// ThreadSanitizer cannot see the hand-offs inside OpenCV's thread pool (TBB, not instrumented)
+// and reports them as races; under it OpenCV runs on the calling threads, and what TSan checks
+// is movseg's own threads (docs/reliability.md).
+[[maybe_unused]] const bool kOpenCvOnCallingThreads = [] {
+  cv::setNumThreads(1);
+  return true;
+}();
+#endif
 
 TempDir::TempDir() {
   std::random_device device;
