@@ -25,14 +25,19 @@ struct DenseAnalysis : Analysis {
   cv::Mat texture;  // smaller eigenvalue of the structure tensor
   cv::Mat flow;     // to the previous frame; empty on a first frame
   double scale = 1;  // bgr = the frame scaled by this
+  cv::Size input_size;
   double prepare_ms = 0, flow_ms = 0;
 };
 
-// Copies the frame's grey image for the next pair on every way out of segment().
+// Keeps the frame's images for the next pair on every way out of segment().
 struct Remember {
-  const cv::Mat& grey;
-  cv::Mat* previous;
-  ~Remember() { grey.copyTo(*previous); }
+  const DenseAnalysis& frame;
+  cv::Mat* previous_grey;
+  cv::Mat* previous_bgr;
+  ~Remember() {
+    frame.grey.copyTo(*previous_grey);
+    frame.bgr.copyTo(*previous_bgr);
+  }
 };
 
 // The residuals at the samples the photometric check does not confirm as moving (less than
@@ -62,6 +67,7 @@ class DensePipeline : public Pipeline {
     Clock::time_point start = Clock::now();
     const cv::Size size = scaledSize(bgr.size(), params_.segmentation_width);
     a.scale = static_cast<double>(size.width) / bgr.cols;
+    a.input_size = bgr.size();
     downscale(bgr, size, &halved_, &a.bgr);
     cv::cvtColor(a.bgr, a.grey, cv::COLOR_BGR2GRAY);
     cv::cornerMinEigenVal(a.grey, a.texture, 5);
@@ -76,7 +82,9 @@ class DensePipeline : public Pipeline {
     const auto& a = static_cast<const DenseAnalysis&>(analysis);
     Diagnostics& diag = result->diagnostics;
     diag.prepare_ms = a.prepare_ms;
-    const Remember remember{a.grey, &previous_grey_};
+    const Remember remember{a, &previous_grey_, &previous_bgr_};
+    has_compensated_ = false;
+    input_size_ = a.input_size;
     if (a.first_frame || a.flow.empty()) {
       colour_.reset();
       mask_.release();  // no memory yet: the first pair has no mask to carry
@@ -88,8 +96,11 @@ class DensePipeline : public Pipeline {
     flowMap(a.flow, &flow_map_);
     if (!mask_.empty()) carryMask(mask_, flow_map_, &carried);
     const FlowCamera camera = fitFlowCamera(a.flow, a.texture, carried, params_, rng_);
-    residualMotion(a.flow, camera.model, &residual_);
+    residualMotion(a.flow, camera, &residual_);
     cameraMap(camera.model, a.grey.size(), &camera_map_);
+    cv::remap(previous_bgr_, compensated_, camera_map_, cv::noArray(), cv::INTER_LINEAR,
+              cv::BORDER_CONSTANT);
+    has_compensated_ = true;
     diag.motion_ms = a.flow_ms + millisecondsSince(start);
 
     start = Clock::now();
@@ -117,9 +128,17 @@ class DensePipeline : public Pipeline {
     return mask_;
   }
 
-  void reset() override { flow_.reset(); }
+  void reset() override {
+    flow_.reset();
+    has_compensated_ = false;
+  }
 
-  cv::Mat compensatedPreviousFrame() const override { return cv::Mat(); }
+  cv::Mat compensatedPreviousFrame() const override {
+    if (!has_compensated_) return cv::Mat();
+    cv::Mat full;
+    cv::resize(compensated_, full, input_size_, 0, 0, cv::INTER_LINEAR);
+    return full;
+  }
 
  private:
   static void describe(const FlowCamera& camera, float scale, double working_scale,
@@ -132,6 +151,7 @@ class DensePipeline : public Pipeline {
     diag->matches = static_cast<int>(camera.at.size());
     diag->motion_fallback = camera.fallback;
     diag->residual_scale = scale;
+    diag->parallax = camera.epipole.has_value();
   }
 
   Params params_;
@@ -142,7 +162,10 @@ class DensePipeline : public Pipeline {
   cv::Mat residual_, confirmation_;
   cv::Mat flow_map_, camera_map_;
   PhotometricCheck photometric_;
-  cv::Mat previous_grey_;  // the last segmented frame's, at the working scale
+  cv::Mat previous_grey_, previous_bgr_;  // the last segmented frame's, at the working scale
+  cv::Mat compensated_;  // previous_bgr_ of the pair brought to the current frame by the camera
+  bool has_compensated_ = false;
+  cv::Size input_size_;
   cv::Mat halved_;  // scratch of downscale()
 };
 
