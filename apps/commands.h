@@ -1,10 +1,22 @@
 // The subcommands of build/movseg. Each add*Command registers its options and its callback;
-// a callback reports failure by throwing std::exception with a one-line message.
+// a callback reports failure by throwing std::exception with a one-line message: UsageError
+// for a command line that cannot be run as given, anything else for a run that failed.
 #pragma once
+
+#include <stdexcept>
 
 #include <CLI/CLI.hpp>
 
 namespace movseg::cli {
+
+// Exit codes (README, docs/usage.md).
+constexpr int kExitRunFailed = 1;    // bad input, a failed write, a decode error
+constexpr int kExitUsage = 2;        // the command line: unknown option, bad value, bad paths
+constexpr int kExitInterrupted = 130;  // SIGINT or SIGTERM, 128 + SIGINT as shells report it
+
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 void addSegmentCommand(CLI::App& app);
 void addSynthCommand(CLI::App& app);

@@ -35,6 +35,7 @@ void runDemo(const DemoOptions& options) {
   segment.output_dir = (fs::path(options.dir) / "segmented").string();
   segment.overlay = (fs::path(options.dir) / "overlay").string();
   segment.params = options.params;
+  segment.overwrite = true;  // the demo's folder is its own: each run replaces the last
   const SegmentSummary summary = runSegmentation(segment);
   std::cout << "segment: " << describeSummary(summary) << "\n";
 

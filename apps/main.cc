@@ -1,6 +1,7 @@
 // build/movseg: segment moving objects, make synthetic test video, evaluate and benchmark.
 #include <malloc.h>
 
+#include <csignal>
 #include <cstdlib>
 #include <exception>
 #include <iostream>
@@ -10,11 +11,31 @@
 
 #include "commands.h"
 
+namespace {
+
 // Errors reach the user as one line of ours; FFmpeg's and OpenCV's own chatter ("moov atom not
 // found", imread warnings) would add lines around it. An explicit environment setting wins.
 void quietLibraries() {
   setenv("OPENCV_FFMPEG_LOGLEVEL", "-8", 0);  // AV_LOG_QUIET
   cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_ERROR);
+}
+
+// Writes report their errors instead of killing the process: a closed stdout (movseg ... | head)
+// and a file-size limit (ulimit -f) become failed writes, not deaths by SIGPIPE or SIGXFSZ.
+void reportFailedWrites() {
+  std::signal(SIGPIPE, SIG_IGN);
+  std::signal(SIGXFSZ, SIG_IGN);
+}
+
+// One line whatever the message holds (a file name may contain a newline).
+std::string oneLine(std::string text) {
+  for (char& c : text) c = c == '\n' || c == '\r' ? ' ' : c;
+  return text;
+}
+
+int fail(int code, const std::exception& e) {
+  std::cerr << "movseg: error: " << oneLine(e.what()) << std::endl;
+  return code;
 }
 
 // Per-frame buffers of a few hundred kilobytes would otherwise be mapped from the kernel and
@@ -27,15 +48,18 @@ void keepLargeBlocksInTheHeap() {
   mallopt(M_TRIM_THRESHOLD, 512 << 20);
 }
 
+}  // namespace
+
 int main(int argc, char** argv) {
   keepLargeBlocksInTheHeap();
   quietLibraries();
+  reportFailedWrites();
   cv::setNumThreads(1);  // per-frame work is small; one core per stream is the design point
   CLI::App app{"movseg: moving object segmentation for freely moving cameras"};
   app.set_version_flag("--version", "movseg " MOVSEG_VERSION);
   app.require_subcommand(1);
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
-    return std::string("movseg: error: ") + e.what() + "\n";
+    return "movseg: error: " + oneLine(e.what()) + "\n";
   });
   movseg::cli::addSegmentCommand(app);
   movseg::cli::addSynthCommand(app);
@@ -44,11 +68,17 @@ int main(int argc, char** argv) {
   movseg::cli::addBenchCommand(app);
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::Success& e) {  // --help
     return app.exit(e);
+  } catch (const CLI::RuntimeError& e) {  // a command's own exit code (an interrupted run)
+    return e.get_exit_code();
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return movseg::cli::kExitUsage;
+  } catch (const movseg::cli::UsageError& e) {
+    return fail(movseg::cli::kExitUsage, e);
   } catch (const std::exception& e) {
-    std::cerr << "movseg: error: " << e.what() << "\n";
-    return 1;
+    return fail(movseg::cli::kExitRunFailed, e);
   }
   return 0;
 }

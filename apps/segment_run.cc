@@ -1,40 +1,44 @@
 #include "segment_run.h"
 
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cctype>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <memory>
-#include <sstream>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "commands.h"
 #include "core/frame.h"
-#include "movseg/fields.h"
-#include "movseg/segmenter.h"
 #include "io/atomic_write.h"
 #include "io/frame_source.h"
 #include "io/overlay.h"
+#include "io/video_decoder.h"
 #include "live_window.h"
+#include "movseg/fields.h"
+#include "movseg/segmenter.h"
 #include "progress.h"
 
 namespace movseg::cli {
 namespace fs = std::filesystem;
 namespace {
 
+// The record of the run whose outputs a folder holds: which input, with which settings, how far.
+constexpr char kManifestName[] = "movseg-run.json";
+
 std::atomic<bool> g_stop{false};
 extern "C" void onSignal(int) { g_stop = true; }
 
-// SIGINT / SIGTERM end the run after the current frame; what was written stays complete.
+// SIGINT / SIGTERM end the run after the current frame (a blocking read of a stream gives up at
+// once); what was written stays complete.
 class StopOnSignal {
  public:
   StopOnSignal() {
@@ -67,6 +71,119 @@ std::string frameName(int index) {
   return name;
 }
 
+// A name frameName() gives: five or more digits, ".png".
+bool isFrameName(const fs::path& path) {
+  const std::string stem = path.stem().string();
+  return path.extension() == ".png" && stem.size() >= 5 &&
+         std::all_of(stem.begin(), stem.end(), [](unsigned char c) { return std::isdigit(c); });
+}
+
+std::string lowercase(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+bool isVideoPath(const std::string& path) {
+  const std::string ext = lowercase(fs::path(path).extension().string());
+  return ext == ".mp4" || ext == ".avi" || ext == ".mkv" || ext == ".mov";
+}
+
+// ---- paths ------------------------------------------------------------------------------------
+
+// Whether `path` is `base` or lies inside it, once both are made absolute and normal.
+bool isSameOrInside(const std::string& path, const std::string& base) {
+  const auto normal = [](const std::string& name) {
+    std::error_code error;
+    const fs::path full = fs::weakly_canonical(fs::absolute(name), error);
+    return full.filename().empty() ? full.parent_path() : full;  // "frames/" is "frames"
+  };
+  const fs::path p = normal(path), b = normal(base);
+  const auto [end, _] = std::mismatch(b.begin(), b.end(), p.begin(), p.end());
+  return end == b.end();
+}
+
+// Refuses outputs that would overwrite the input, and empty or unknown output names.
+void checkOutputPaths(const SegmentOptions& options) {
+  if (options.output_dir.empty()) throw UsageError("the output folder (-o) is empty");
+  const std::string input = inputPath(options.input);
+  const std::pair<const char*, std::string> outputs[] = {
+      {"-o", options.output_dir}, {"--stats", options.stats_file}, {"--overlay", options.overlay}};
+  for (const auto& [option, path] : outputs) {
+    if (!path.empty() && !input.empty() && isSameOrInside(path, input)) {
+      throw UsageError(std::string(option) + " '" + path + "' would write into the input '" +
+                       options.input + "'");
+    }
+  }
+  const fs::path overlay(options.overlay);
+  std::error_code error;
+  if (!options.overlay.empty() && overlay.has_extension() && !isVideoPath(options.overlay) &&
+      !fs::is_directory(overlay, error)) {
+    throw UsageError("--overlay '" + options.overlay +
+                     "': not a video name (.mp4, .mkv, .mov, .avi) nor a folder");
+  }
+}
+
+// ---- the run manifest -------------------------------------------------------------------------
+
+// The manifest's record of a run: its input and every setting that changes a mask.
+nlohmann::json runIdentity(const SegmentOptions& options) {
+  nlohmann::json settings;
+  for (const FieldInfo& field : paramFields()) {
+    settings[field.name] = toText(paramValue(options.params, field.name));
+  }
+  if (!options.resize.empty()) {
+    settings["size"] = std::to_string(options.resize.width) + "x" + std::to_string(options.resize.height);
+  }
+  return {{"input", options.input}, {"settings", settings}};
+}
+
+// An output folder holds the outputs of one run, described by its manifest. A folder holding
+// another run's (a manifest, or numbered masks without one) is refused unless `overwrite`, which
+// removes that run's masks, debug pictures and overlay frames first: runs never mix silently.
+void claimOutputFolder(const SegmentOptions& options) {
+  makeFolder(options.output_dir);
+  const fs::path dir(options.output_dir);
+  const fs::path manifest = dir / kManifestName;
+  std::vector<fs::path> previous;
+  for (const fs::path& folder : {dir, dir / "overlay"}) {
+    std::error_code error;
+    for (const auto& entry : fs::directory_iterator(folder, error)) {
+      if (isFrameName(entry.path())) previous.push_back(entry.path());
+    }
+  }
+  if (previous.empty() && !fs::exists(manifest)) return;
+  if (!options.overwrite) {
+    throw UsageError("'" + options.output_dir + "' holds the outputs of an earlier run (" +
+                     (fs::exists(manifest) ? kManifestName : "numbered masks") +
+                     "); --overwrite replaces them");
+  }
+  for (const fs::path& file : previous) fs::remove(file);
+  fs::remove_all(dir / "debug");
+  fs::remove(manifest);
+}
+
+class Manifest {
+ public:
+  explicit Manifest(const SegmentOptions& options)
+      : path_((fs::path(options.output_dir) / kManifestName).string()), record_(runIdentity(options)) {
+    update(0, SourceReport(), false);
+  }
+  void update(int frames_done, const SourceReport& source, bool finished) {
+    record_["frames_done"] = frames_done;
+    record_["frames_expected"] = source.expected_frames;
+    record_["decode_errors"] = source.decode_errors;
+    record_["finished"] = finished;
+    writeTextAtomic(path_, record_.dump(2) + "\n");
+  }
+
+ private:
+  std::string path_;
+  nlohmann::json record_;
+};
+
+// ---- stats and overlays -----------------------------------------------------------------------
+
 // A field's value as JSON; a camera model as its three rows.
 struct ToJson {
   nlohmann::json operator()(const cv::Matx33d& m) const {
@@ -78,50 +195,32 @@ struct ToJson {
   }
 };
 
-// One line of --stats: the frame index and every field of diagnostics.def, by its name.
-nlohmann::json statsLine(int index, const Diagnostics& d) {
+// One line of --stats: the frame index, every field of diagnostics.def by its name, and the
+// decode errors the source reported while this frame was read.
+nlohmann::json statsLine(int index, const Diagnostics& d, int decode_errors) {
   nlohmann::json line{{"frame", index}};
   for (const FieldInfo& field : diagnosticFields()) {
     line[field.name] = std::visit(ToJson{}, diagnosticValue(d, field.name));
   }
+  line["decode_errors"] = decode_errors;
   return line;
 }
 
-// JSON Lines written to FILE.part and renamed to FILE when the run ends (also on a signal).
-class StatsWriter {
- public:
-  explicit StatsWriter(std::string path) : path_(std::move(path)) {
-    if (path_.empty()) return;
-    out_.open(path_ + ".part", std::ios::trunc);
-    if (!out_) throw std::runtime_error("cannot write stats file '" + path_ + "'");
+// The codec of an overlay video: H.264 where FFmpeg has an encoder for it, else MPEG-4 part 2
+// (.avi: Motion JPEG, which every player of that container reads).
+int overlayFourcc(const std::string& path) {
+  if (lowercase(fs::path(path).extension().string()) == ".avi") {
+    return cv::VideoWriter::fourcc('M', 'J', 'P', 'G');
   }
-  void write(const nlohmann::json& line) {
-    if (path_.empty()) return;
-    out_ << line.dump() << '\n';
-  }
-  void close() {
-    if (path_.empty()) return;
-    out_.close();
-    std::error_code error;
-    fs::rename(path_ + ".part", path_, error);
-    if (error) throw std::runtime_error("cannot write stats file '" + path_ + "'");
-  }
-
- private:
-  std::string path_;
-  std::ofstream out_;
-};
-
-bool isVideoPath(const std::string& path) {
-  const std::string ext = fs::path(path).extension().string();
-  return ext == ".mp4" || ext == ".avi" || ext == ".mkv" || ext == ".mov";
+  return cv::VideoWriter::fourcc('a', 'v', 'c', '1');
 }
 
 // Overlay frames as PNGs in a folder, or as one video written to a temporary name and renamed
-// when complete.
+// when it is complete and plays.
 class OverlayWriter {
  public:
-  explicit OverlayWriter(std::string target) : target_(std::move(target)) {
+  OverlayWriter(std::string target, double fps) : target_(std::move(target)) {
+    fps_ = std::isfinite(fps) && fps > 0 && fps <= 1000 ? fps : 25.0;
     if (target_.empty()) return;
     if (isVideoPath(target_)) {
       const fs::path p(target_);
@@ -136,35 +235,48 @@ class OverlayWriter {
       writeImageAtomic((fs::path(target_) / frameName(index)).string(), picture);
       return;
     }
-    if (!video_.isOpened()) {
-      size_ = picture.size();
-      const int fourcc = fs::path(target_).extension() == ".avi"
-                             ? cv::VideoWriter::fourcc('M', 'J', 'P', 'G')
-                             : cv::VideoWriter::fourcc('m', 'p', '4', 'v');
-      if (!video_.open(temporary_, cv::CAP_FFMPEG, fourcc, 25.0, size_)) {
-        throw std::runtime_error("cannot write overlay video '" + target_ + "'");
-      }
-    }
-    if (picture.size() == size_) {
-      video_.write(picture);
-    } else {
-      cv::Mat resized;
-      cv::resize(picture, resized, size_);
-      video_.write(resized);
-    }
+    if (!video_.isOpened()) open(picture.size());
+    video_.write(resizedTo(picture, size_));
+    ++frames_;
   }
+  // Closes the video and checks that it plays, with every frame: OpenCV's writer does not
+  // report a failed write (a full disk leaves a file without its index).
   void close() {
     if (!video_.isOpened()) return;
     video_.release();
+    try {
+      const VideoDecoder check(temporary_, DecoderLimits());
+      if (check.expectedFrames() != frames_) {
+        throw std::runtime_error("it holds " + std::to_string(std::max(0, check.expectedFrames())) +
+                                 " of " + std::to_string(frames_) + " frames");
+      }
+    } catch (const std::runtime_error& e) {
+      std::remove(temporary_.c_str());
+      throw std::runtime_error("cannot write overlay video '" + target_ + "': " + e.what() +
+                               " (is the disk full?)");
+    }
     std::error_code error;
     fs::rename(temporary_, target_, error);
-    if (error) throw std::runtime_error("cannot write overlay video '" + target_ + "'");
+    if (error) throw std::runtime_error("cannot write overlay video '" + target_ + "': " + error.message());
   }
 
  private:
+  void open(cv::Size size) {
+    size_ = size;
+    const int fourcc = overlayFourcc(target_);
+    if (video_.open(temporary_, cv::CAP_FFMPEG, fourcc, fps_, size_)) return;
+    if (fourcc == cv::VideoWriter::fourcc('a', 'v', 'c', '1') &&
+        video_.open(temporary_, cv::CAP_FFMPEG, cv::VideoWriter::fourcc('m', 'p', '4', 'v'), fps_, size_)) {
+      return;
+    }
+    throw std::runtime_error("cannot write overlay video '" + target_ + "'");
+  }
+
   std::string target_, temporary_;
+  double fps_;
   cv::VideoWriter video_;
   cv::Size size_;
+  int frames_ = 0;
 };
 
 std::string hudLine(int index, const Diagnostics& d) {
@@ -183,40 +295,108 @@ void writeDebugPictures(const std::string& folder, int index, const Result& resu
   }
 }
 
+// Everything a run writes. finish() completes the files; when the run fails midway the
+// destructor completes what it can instead, so that what was written stays under final names.
+// The manifest is written last, once every output could be opened: a run that could not start
+// leaves no record that would refuse the next one.
+class RunOutputs {
+ public:
+  RunOutputs(const SegmentOptions& options, double fps)
+      : options_(options),
+        stats_(options.stats_file.empty() ? nullptr : std::make_unique<LineFile>(options.stats_file)),
+        overlay_(options.overlay, fps),
+        manifest_(options) {}
+  ~RunOutputs() {
+    if (finished_) return;
+    try {
+      complete(false);
+    } catch (const std::exception&) {  // the error that ended the run is the one to report
+    }
+  }
+
+  // `picture` is the overlay, empty when none is wanted.
+  void write(int index, const Result& result, const cv::Mat& picture, const SourceReport& source,
+             int decode_errors) {
+    const fs::path dir(options_.output_dir);
+    writeImageAtomic((dir / frameName(index)).string(), result.mask);
+    if (options_.debug) writeDebugPictures((dir / "debug").string(), index, result);
+    if (stats_) stats_->append(statsLine(index, result.diagnostics, decode_errors).dump());
+    overlay_.write(index, picture);
+    frames_ = index + 1;
+    source_ = source;
+    manifest_.update(frames_, source_, false);
+  }
+
+  // `whole`: the run did all it was asked (not stopped by a signal).
+  void finish(const SourceReport& source, bool whole) {
+    source_ = source;
+    finished_ = true;
+    complete(whole);
+  }
+
+ private:
+  void complete(bool finished) {
+    if (stats_) stats_->close();
+    stats_.reset();
+    overlay_.close();
+    manifest_.update(frames_, source_, finished);
+  }
+
+  const SegmentOptions& options_;
+  std::unique_ptr<LineFile> stats_;
+  OverlayWriter overlay_;
+  Manifest manifest_;
+  SourceReport source_;
+  int frames_ = 0;
+  bool finished_ = false;
+};
+
 }  // namespace
 
+bool SegmentSummary::truncated() const {
+  if (interrupted || reached_max_frames || source.expected_frames < 0) return false;
+  const int tolerance = source.exact_count ? 0 : static_cast<int>(std::ceil(source.fps));
+  return frames + tolerance < source.expected_frames;
+}
+
 SegmentSummary runSegmentation(const SegmentOptions& options) {
+  checkOutputPaths(options);
   LiveWindow window(options.show);
   Params params = options.params;
   params.debug_images = params.debug_images || options.debug;
   Segmenter segmenter(params);
-  std::unique_ptr<FrameSource> source = FrameSource::open(options.input);
-  if (!options.output_dir.empty()) makeFolder(options.output_dir);
-  const std::string debug_dir = (fs::path(options.output_dir) / "debug").string();
-  StatsWriter stats(options.stats_file);
-  OverlayWriter overlay(options.overlay);
   StopOnSignal stop_on_signal;
+  std::unique_ptr<FrameSource> source =
+      FrameSource::open(options.input, DecoderLimits{options.timeout, &g_stop});
+  claimOutputFolder(options);
+  RunOutputs outputs(options, source->report().fps);
 
   SegmentSummary summary;
-  int total = source->frameCount();
+  int total = source->report().expected_frames;
   if (options.max_frames >= 0 && (total < 0 || total > options.max_frames)) total = options.max_frames;
   Progress progress("segment", total, options.quiet);
   const auto start = std::chrono::steady_clock::now();
   cv::Mat frame;
-  while (options.max_frames < 0 || summary.frames < options.max_frames) {
-    if (g_stop) {
-      summary.interrupted = true;
+  int decode_errors = 0;
+  for (;;) {
+    if (options.max_frames >= 0 && summary.frames >= options.max_frames) {
+      summary.reached_max_frames = true;
       break;
     }
-    if (!source->read(&frame)) {
-      summary.stream_ended = source->frameCount() < 0;
-      break;
+    if (g_stop) break;
+    const bool got = source->read(&frame);
+    summary.source = source->report();
+    const int new_errors = summary.source.decode_errors - decode_errors;
+    decode_errors = summary.source.decode_errors;
+    if (new_errors > 0 && options.stop_on_decode_error) {
+      throw std::runtime_error(source->describe() + ": decode error: " + summary.source.last_error);
     }
+    if (!got) break;
     const int index = summary.frames;
     Result result;
     try {
       result = segmenter.process(resizedTo(frame, options.resize));
-    } catch (const std::invalid_argument& e) {
+    } catch (const std::exception& e) {
       throw std::runtime_error(source->describe() + ": " + e.what());
     }
     if (result.mask.size() != frame.size()) {
@@ -225,31 +405,40 @@ SegmentSummary runSegmentation(const SegmentOptions& options) {
     summary.frame_ms.add(result.diagnostics.total_ms);
     summary.resets += result.diagnostics.reset;
     summary.motion_fallbacks += result.diagnostics.motion_fallback;
-    if (!options.output_dir.empty()) {
-      writeImageAtomic((fs::path(options.output_dir) / frameName(index)).string(), result.mask);
-      if (options.debug) writeDebugPictures(debug_dir, index, result);
-    }
-    stats.write(statsLine(index, result.diagnostics));
-    bool viewer_stopped = false;
+    summary.scene_cuts += result.diagnostics.scene_cut;
+    cv::Mat picture;
     if (!options.overlay.empty() || options.show) {
-      const cv::Mat picture = drawOverlay(frame, result, hudLine(index, result.diagnostics));
-      overlay.write(index, picture);
-      viewer_stopped = !window.show(picture);
+      picture = drawOverlay(frame, result, hudLine(index, result.diagnostics), options.feature_dots);
     }
+    outputs.write(index, result, picture, summary.source, new_errors);
     ++summary.frames;
     progress.update(summary.frames);
-    if (viewer_stopped) break;
+    if (!window.show(picture)) break;
   }
+  summary.interrupted = g_stop;
   progress.finish();
-  summary.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  stats.close();
-  overlay.close();
-  if (summary.frames == 0 && !summary.interrupted) {
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  outputs.finish(summary.source, !summary.interrupted);
+  if (summary.frames == 0 && !summary.interrupted && !summary.reached_max_frames) {
     throw std::runtime_error("no frames in '" + options.input + "'" +
-                             (summary.stream_ended ? " (the stream ended or stalled)" : ""));
+                             (summary.source.timed_out ? " (no answer within the timeout)" : ""));
   }
   return summary;
+}
+
+std::string describeInputProblems(const SegmentSummary& summary) {
+  const SourceReport& source = summary.source;
+  std::string text;
+  const auto add = [&text](const std::string& part) { text += (text.empty() ? "" : "; ") + part; };
+  if (source.decode_errors > 0) {
+    add(std::to_string(source.decode_errors) + " decode errors (last: " + source.last_error + ")");
+  }
+  if (summary.truncated()) {
+    add(std::to_string(summary.frames) + " of " + (source.exact_count ? "" : "about ") +
+        std::to_string(source.expected_frames) + " frames: the video is truncated");
+  }
+  if (source.timed_out) add("no frame within the timeout: the stream stalled");
+  return text;
 }
 
 std::string describeSummary(const SegmentSummary& summary) {
@@ -263,6 +452,9 @@ std::string describeSummary(const SegmentSummary& summary) {
   if (summary.motion_fallbacks > 0) {
     text += ", " + std::to_string(summary.motion_fallbacks) + " alignment fallbacks";
   }
+  if (summary.scene_cuts > 0) text += ", " + std::to_string(summary.scene_cuts) + " scene cuts";
+  const std::string problems = describeInputProblems(summary);
+  if (!problems.empty()) text += "; " + problems;
   return text;
 }
 

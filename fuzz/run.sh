@@ -12,7 +12,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 # for gigabytes and trip libFuzzer's memory limit. Capped, the fuzzer hunts our bugs instead.
 export OPENCV_IO_MAX_IMAGE_PIXELS=4194304
 
-for target in segmenter readers; do
+for target in segmenter readers video; do
   new="$build/fuzz/new-corpus/$target"
   artifacts="$build/fuzz/artifacts"
   log="$build/fuzz/$target.log"

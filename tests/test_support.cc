@@ -1,12 +1,19 @@
 #include "test_support.h"
 
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <random>
+
+#include <gtest/gtest.h>
 
 namespace movseg::test {
 
@@ -24,9 +31,11 @@ TempDir::~TempDir() {
   std::filesystem::remove_all(path_, ignored);
 }
 
-CommandResult runCli(const std::string& arguments) {
+namespace {
+
+CommandResult runCommand(const std::string& command_line) {
   CommandResult result;
-  const std::string command = std::string(MOVSEG_CLI_PATH) + " " + arguments + " 2>&1";
+  const std::string command = command_line + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return result;
   std::array<char, 4096> buffer;
@@ -35,6 +44,84 @@ CommandResult runCli(const std::string& arguments) {
   const int status = pclose(pipe);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
+}
+
+}  // namespace
+
+CommandResult runCli(const std::string& arguments) {
+  return runCommand(std::string(MOVSEG_CLI_PATH) + " " + arguments);
+}
+
+CommandResult runCliWithFileLimit(long bytes, const std::string& arguments) {
+  const std::string limit = std::to_string(bytes);
+  return runCommand("prlimit --fsize=" + limit + ":" + limit + " " + MOVSEG_CLI_PATH + " " + arguments);
+}
+
+void expectOneLineError(const CommandResult& r, const std::string& needle, int code) {
+  EXPECT_NE(r.exit_code, 0);
+  if (code >= 0) {
+    EXPECT_EQ(r.exit_code, code) << r.output;
+  }
+  EXPECT_EQ(r.output.rfind("movseg: error: ", 0), 0u) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_NE(r.output.find(needle), std::string::npos) << r.output;
+}
+
+pid_t startCli(const std::vector<std::string>& args, const std::string& log) {
+  std::vector<char*> argv{const_cast<char*>(MOVSEG_CLI_PATH)};
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  pid_t pid = -1;
+  const int error = posix_spawn(&pid, MOVSEG_CLI_PATH, &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  return error == 0 ? pid : -1;
+}
+
+LocalServer::LocalServer(std::string video) : video_(std::move(video)) {
+  fd_ = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  bind(fd_, reinterpret_cast<sockaddr*>(&address), sizeof address);
+  socklen_t length = sizeof address;
+  getsockname(fd_, reinterpret_cast<sockaddr*>(&address), &length);
+  port_ = ntohs(address.sin_port);
+  listen(fd_, 4);
+  if (!video_.empty()) server_ = std::thread([this] { serveOnce(); });
+}
+
+LocalServer::~LocalServer() {
+  shutdown(fd_, SHUT_RDWR);
+  close(fd_);
+  if (server_.joinable()) server_.join();
+}
+
+std::string LocalServer::url() const {
+  return "http://127.0.0.1:" + std::to_string(port_) + "/video";
+}
+
+void LocalServer::serveOnce() {
+  const int client = accept(fd_, nullptr, nullptr);
+  if (client < 0) return;
+  const std::string head = "HTTP/1.0 200 OK\r\nContent-Type: application/octet-stream\r\n\r\n";
+  send(client, head.data(), head.size(), MSG_NOSIGNAL);
+  send(client, video_.data(), video_.size(), MSG_NOSIGNAL);
+  char ignored[256];
+  while (recv(client, ignored, sizeof ignored, 0) > 0) {}  // until the reader hangs up
+  close(client);
+}
+
+int runShell(const std::string& command) {
+  const int status = std::system((command + " >/dev/null 2>&1").c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+bool ffmpeg(const std::string& arguments) {
+  return runShell("ffmpeg -nostdin -hide_banner -v error -y " + arguments) == 0;
 }
 
 std::string davisSequence(const std::string& name) {

@@ -1,7 +1,11 @@
 // Helpers shared by the tests.
 #pragma once
 
+#include <sys/types.h>
+
 #include <string>
+#include <thread>
+#include <vector>
 
 namespace movseg::test {
 
@@ -26,6 +30,43 @@ struct CommandResult {
 
 // Runs build/movseg with `arguments` (a shell-quoted string) and captures its output.
 CommandResult runCli(const std::string& arguments);
+
+// runCli() under a file-size limit (RLIMIT_FSIZE, as a full disk): a write past `bytes` fails.
+CommandResult runCliWithFileLimit(long bytes, const std::string& arguments);
+
+// Expects a non-zero exit (`code` when given) and exactly one line "movseg: error: ..." naming
+// `needle`.
+void expectOneLineError(const CommandResult& result, const std::string& needle, int code = -1);
+
+// `movseg ARGS...` started in the background, its stdout and stderr going to `log`; its pid.
+pid_t startCli(const std::vector<std::string>& args, const std::string& log);
+
+// A TCP server on 127.0.0.1 for stream tests. Without `video` it accepts connections and never
+// answers; with it, it answers the first request with an HTTP header and those bytes, then
+// stays silent until the client hangs up (a stalled stream).
+class LocalServer {
+ public:
+  explicit LocalServer(std::string video = "");
+  ~LocalServer();
+  LocalServer(const LocalServer&) = delete;
+  LocalServer& operator=(const LocalServer&) = delete;
+  std::string url() const;
+
+ private:
+  void serveOnce();
+
+  int fd_ = -1;
+  int port_ = 0;
+  std::string video_;
+  std::thread server_;
+};
+
+// Runs a shell command, its output discarded; its exit code.
+int runShell(const std::string& command);
+
+// Makes a video with FFmpeg's command-line tool: `ffmpeg -v error -y ARGUMENTS`; false when it
+// failed or ffmpeg is missing (tests then fail: scripts/install-deps.sh installs it).
+bool ffmpeg(const std::string& arguments);
 
 // The folder of a DAVIS 2016 sequence (frames/, masks/) under $MOVSEG_DATA/davis2016, or the
 // shared data next to the source tree; "" when it is not there (tests then skip).

@@ -50,16 +50,24 @@ class Segmenter {
 
   // Takes the next frame: grey, BGR or BGRA (RGB: convert it first, cv::COLOR_RGB2BGR), at
   // least 1x1; 8-bit or 16-bit, or float (32 or 64 bits) with values in [0, 1] — a float frame
-  // in 0-255 is rejected. Returns the mask of what moves in it. Throws std::invalid_argument for
-  // an empty frame, an unsupported type or a float value outside [0, 1]; never throws for a
-  // hard scene (flat, noisy, scene cut): see Diagnostics' flags.
+  // in 0-255 is rejected. Returns the mask of what moves in it; never throws for a hard scene
+  // (flat, noisy, scene cut): see Diagnostics' flags. Each stream runs within the per-frame work
+  // limit of its frame size (Diagnostics::work_limited). No OpenCV exception leaves it; it
+  // throws only:
+  //  - std::invalid_argument (Python: ValueError) for a frame it does not take: empty, an
+  //    unsupported type, a float value outside [0, 1], or too large for OpenCV's warps at a
+  //    working scale (a side of 32767 pixels or more at alignment_width or
+  //    segmentation_width). Nothing has changed: the next frame continues the stream.
+  //  - std::runtime_error (Python: RuntimeError) when OpenCV fails on a frame it took (out of
+  //    memory above all). The stream restarts: the next frame is a first frame.
   Result process(const cv::Mat& frame);
 
   // Forgets the previous frame: the next frame is treated as a first frame.
   void reset();
 
   // The previous frame warped into the last processed frame's coordinates (8-bit BGR); empty
-  // before the second frame.
+  // before the second frame. Throws std::runtime_error when OpenCV cannot warp it (a frame of
+  // 32767 pixels or more a side).
   cv::Mat compensatedPreviousFrame() const;
 
   const Params& params() const;

@@ -23,8 +23,9 @@ class StreamSegmenter {
   StreamSegmenter& operator=(const StreamSegmenter&) = delete;
 
   // Takes the next frame (as Segmenter::process does) and returns the result of the frame
-  // pushed before it — nothing on a stream's first push. Throws std::invalid_argument for an
-  // empty frame or an unsupported type (the frame is then not taken).
+  // pushed before it — nothing on a stream's first push. Throws as Segmenter::process does:
+  // std::invalid_argument for a frame it does not take (the frame is then not taken),
+  // std::runtime_error when OpenCV fails (the stream restarts).
   std::optional<Result> push(const cv::Mat& frame);
 
   // The result of the last frame pushed, once; nothing when there is none waiting.

@@ -1,6 +1,7 @@
 #include "ndarray.h"
 
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -89,6 +90,12 @@ cv::Mat matFromArray(const py::array& input) {
   }
   const int depth = depthOf(input);
   if (input.size() == 0) return cv::Mat();
+  for (int axis = 0; axis < 2; ++axis) {
+    if (input.shape(axis) > std::numeric_limits<int>::max()) {
+      throw std::invalid_argument("frame dimension " + std::to_string(input.shape(axis)) +
+                                  " does not fit in an int");
+    }
+  }
   const py::ssize_t channels = input.ndim() == 3 ? input.shape(2) : 1;
   if (channels > CV_CN_MAX) {
     throw std::invalid_argument("unsupported channel count " + std::to_string(channels) +

@@ -1,10 +1,48 @@
 #include "api/frame_loop.h"
 
+#include <climits>
+#include <new>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "core/timing.h"
+#include "core/work_limit.h"
 
 namespace movseg {
+namespace {
+
+std::string sizeText(cv::Size size) {
+  return std::to_string(size.width) + "x" + std::to_string(size.height);
+}
+
+// OpenCV's warps (remap) take images below SHRT_MAX pixels a side; both working scales must fit.
+void checkWorkingScales(cv::Size frame, const Params& params) {
+  for (const auto& [name, width] : {std::pair<const char*, int>{"alignment_width", params.alignment_width},
+                                    {"segmentation_width", params.segmentation_width}}) {
+    const cv::Size scaled = scaledSize(frame, width);
+    if (scaled.width >= SHRT_MAX || scaled.height >= SHRT_MAX) {
+      throw std::invalid_argument("frame " + sizeText(frame) + " is too large: at " + name + " " +
+                                  std::to_string(width) + " it is " + sizeText(scaled) +
+                                  ", beyond 32766 pixels a side");
+    }
+  }
+}
+
+// Runs `step`; an OpenCV error (whose what() spans several lines) or a failed allocation leaves
+// as a one-line std::runtime_error.
+template <typename Step>
+auto openCvChecked(Step&& step) {
+  try {
+    return step();
+  } catch (const cv::Exception& e) {
+    throw std::runtime_error("OpenCV failed in " + e.func + ": " + e.err);
+  } catch (const std::bad_alloc&) {
+    throw std::runtime_error("out of memory");
+  }
+}
+
+}  // namespace
 
 FrameLoop::FrameLoop(const Params& params) : params_(params), pipeline_(makePipeline(params)) {}
 
@@ -16,9 +54,12 @@ std::unique_ptr<FrameLoop::Job> FrameLoop::newJob() const {
 
 cv::Mat FrameLoop::ownedBgr(const cv::Mat& frame) {
   if (frame.empty()) throw std::invalid_argument("empty frame");
-  cv::Mat bgr = frames_.take(frame.size(), CV_8UC3);
-  toBgr8(frame, &bgr);
-  return bgr;
+  checkWorkingScales(frame.size(), params_);
+  return openCvChecked([&] {
+    cv::Mat bgr = frames_.take(frame.size(), CV_8UC3);
+    toBgr8(frame, &bgr);
+    return bgr;
+  });
 }
 
 void FrameLoop::analyse(const cv::Mat& bgr, Job* job) {
@@ -26,13 +67,15 @@ void FrameLoop::analyse(const cv::Mat& bgr, Job* job) {
   job->result = Result();
   Diagnostics& diag = job->result.diagnostics;
   if (!size_.empty() && size_ != bgr.size()) {
-    pipeline_->reset();
-    size_ = cv::Size();
+    reset();
     diag.reset = true;
   }
   diag.first_frame = job->analysis->first_frame = size_.empty();
+  if (diag.first_frame) startStream(bgr.size());
+  diag.work_limited = work_limited_;
   size_ = job->size = bgr.size();
-  pipeline_->analyse(bgr, job->analysis.get());
+  job->pipeline = pipeline_;
+  openCvChecked([&] { pipeline_->analyse(bgr, job->analysis.get()); });
   job->analyse_ms = millisecondsSince(start);
 }
 
@@ -40,11 +83,14 @@ void FrameLoop::segment(Job* job) {
   const Clock::time_point start = Clock::now();
   Result& result = job->result;
   const DebugSink debug(params_.debug_images ? &result.debug : nullptr);
-  const cv::Mat mask = pipeline_->segment(*job->analysis, debug, &result);
-  // Nothing moves without a previous frame, whatever a pipeline makes of its first one (MOG2
-  // calls everything foreground).
-  result.mask = result.diagnostics.first_frame ? cv::Mat::zeros(job->size, CV_8U)
-                                               : upscaledMask(mask, job->size);
+  openCvChecked([&] {
+    const cv::Mat mask = job->pipeline->segment(*job->analysis, debug, &result);
+    // Nothing moves without a previous frame, whatever a pipeline makes of its first one (MOG2
+    // calls everything foreground), nor across a scene cut, where everything differs.
+    const Diagnostics& diag = result.diagnostics;
+    result.mask = diag.first_frame || diag.scene_cut ? cv::Mat::zeros(job->size, CV_8U)
+                                                     : upscaledMask(mask, job->size);
+  });
   debug.put("mask", [&] { return result.mask; });
   result.diagnostics.total_ms = job->analyse_ms + millisecondsSince(start);
 }
@@ -52,6 +98,18 @@ void FrameLoop::segment(Job* job) {
 void FrameLoop::reset() {
   pipeline_->reset();
   size_ = cv::Size();
+}
+
+cv::Mat FrameLoop::compensatedPreviousFrame() const {
+  return openCvChecked([&] { return pipeline_->compensatedPreviousFrame(); });
+}
+
+// A stream runs within the work limit of its frame size (core/work_limit.h). The defaults never
+// reach it, so a stream of default parameters keeps the pipeline made with the loop.
+void FrameLoop::startStream(cv::Size size) {
+  const WorkLimit limit = withinWorkLimit(params_, size);
+  if (limit.lowered || work_limited_) pipeline_ = makePipeline(limit.params);
+  work_limited_ = limit.lowered;
 }
 
 }  // namespace movseg

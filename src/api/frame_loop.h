@@ -1,7 +1,9 @@
 // The one frame loop behind Segmenter and StreamSegmenter. Phase 1 normalises the frame,
-// restarts the stream when its size changes and runs the pipeline's analysis; phase 2 runs the
-// pipeline's segmentation, empties a first frame's mask, scales the mask to the frame and
-// times the whole.
+// restarts the stream when its size changes, keeps each stream within the work limit of its
+// frame size and runs the pipeline's analysis; phase 2 runs the pipeline's segmentation,
+// empties the mask of a first frame or a scene cut, scales the mask to the frame and times the
+// whole. No OpenCV exception leaves it: each becomes the std::invalid_argument or
+// std::runtime_error that segmenter.h promises.
 #pragma once
 
 #include <memory>
@@ -21,6 +23,7 @@ class FrameLoop {
 
   // One frame on its way through the loop; reused from frame to frame.
   struct Job {
+    std::shared_ptr<Pipeline> pipeline;  // the one that analysed it, and segments it
     std::unique_ptr<Analysis> analysis;
     Result result;
     cv::Size size;
@@ -31,24 +34,34 @@ class FrameLoop {
 
   // The frame as the pipeline takes it: 8-bit BGR in a buffer of the loop's own (the pipeline
   // keeps frames, and a video loop refills its buffer). Throws std::invalid_argument for an
-  // empty frame or an unsupported type.
+  // empty frame, an unsupported type, or a frame too large for OpenCV's warps at a working
+  // scale; nothing has changed then.
   cv::Mat ownedBgr(const cv::Mat& frame);
 
-  // Phase 1 of `bgr` (from ownedBgr) into `job`.
+  // Phase 1 of `bgr` (from ownedBgr) into `job`. Throws std::runtime_error when OpenCV fails
+  // (out of memory above all); the caller then resets the loop.
   void analyse(const cv::Mat& bgr, Job* job);
 
-  // Phase 2: completes job->result.
+  // Phase 2: completes job->result. Throws as analyse() does.
   void segment(Job* job);
 
   // The next frame starts a new stream.
   void reset();
 
   const Params& params() const { return params_; }
-  const Pipeline& pipeline() const { return *pipeline_; }
+
+  // The pipeline's compensatedPreviousFrame(); throws as analyse() does.
+  cv::Mat compensatedPreviousFrame() const;
 
  private:
+  void startStream(cv::Size size);
+
   Params params_;
-  std::unique_ptr<Pipeline> pipeline_;
+  // The current stream's pipeline, made with the parameters of its work limit. A new one
+  // replaces it only when those parameters change; the previous stream's last job keeps the
+  // old one alive until it is segmented (StreamSegmenter's phases overlap).
+  std::shared_ptr<Pipeline> pipeline_;
+  bool work_limited_ = false;  // pipeline_ runs with lowered parameters
   cv::Size size_;  // of the last analysed frame; empty before the first frame of a stream
   FramePool frames_;
 };

@@ -1,6 +1,8 @@
 // movseg::Segmenter: the frame loop, one frame at a time.
 #include "movseg/segmenter.h"
 
+#include <stdexcept>
+
 #include "api/frame_loop.h"
 
 namespace movseg {
@@ -22,17 +24,24 @@ Segmenter::Segmenter(Segmenter&&) noexcept = default;
 Segmenter& Segmenter::operator=(Segmenter&&) noexcept = default;
 
 Result Segmenter::process(const cv::Mat& frame) {
-  FrameLoop::Job& job = *impl_->jobs[impl_->next];
-  impl_->next = 1 - impl_->next;
-  impl_->loop.analyse(impl_->loop.ownedBgr(frame), &job);
-  impl_->loop.segment(&job);
+  Impl& s = *impl_;
+  const cv::Mat bgr = s.loop.ownedBgr(frame);  // std::invalid_argument: nothing has changed
+  FrameLoop::Job& job = *s.jobs[s.next];
+  s.next = 1 - s.next;
+  try {
+    s.loop.analyse(bgr, &job);
+    s.loop.segment(&job);
+  } catch (const std::runtime_error&) {
+    reset();  // the pipeline may hold half a pair
+    throw;
+  }
   return std::move(job.result);
 }
 
 void Segmenter::reset() { impl_->loop.reset(); }
 
 cv::Mat Segmenter::compensatedPreviousFrame() const {
-  return impl_->loop.pipeline().compensatedPreviousFrame();
+  return impl_->loop.compensatedPreviousFrame();
 }
 
 const Params& Segmenter::params() const { return impl_->loop.params(); }

@@ -83,14 +83,33 @@ struct StreamSegmenter::Impl {
   cv::Mat incoming;                         // the frame being analysed
   std::unique_ptr<Worker> worker;           // null with one thread
 
-  // Waits for the analysis in flight, if any. A failed analysis ends the stream.
+  // Forgets the stream; a failed phase ends it (the pipeline may hold half a pair).
+  void restart() {
+    pending = -1;
+    loop.reset();
+  }
+
+  // Waits for the analysis in flight, if any.
   void settle() {
     if (!worker) return;
     try {
       worker->wait();
     } catch (...) {
-      pending = -1;
-      loop.reset();
+      restart();
+      throw;
+    }
+  }
+
+  // Phase 1 of the incoming frame into `job`, on the worker when there is one.
+  void analyseIncoming(FrameLoop::Job* job) {
+    if (worker) {
+      worker->start([this, job] { loop.analyse(incoming, job); });  // small: no allocation
+      return;
+    }
+    try {
+      loop.analyse(incoming, job);
+    } catch (...) {
+      restart();
       throw;
     }
   }
@@ -99,7 +118,13 @@ struct StreamSegmenter::Impl {
     if (pending < 0) return std::nullopt;
     FrameLoop::Job& job = *jobs[pending];
     pending = -1;
-    loop.segment(&job);
+    try {
+      loop.segment(&job);
+    } catch (...) {
+      settle();
+      restart();
+      throw;
+    }
     return std::move(job.result);
   }
 };
@@ -119,12 +144,7 @@ std::optional<Result> StreamSegmenter::push(const cv::Mat& frame) {
   s.settle();
   s.incoming = s.loop.ownedBgr(frame);
   const int slot = s.pending == 0 ? 1 : 0;
-  FrameLoop::Job* job = s.jobs[slot].get();
-  if (s.worker) {
-    s.worker->start([&s, job] { s.loop.analyse(s.incoming, job); });  // small: no allocation
-  } else {
-    s.loop.analyse(s.incoming, job);
-  }
+  s.analyseIncoming(s.jobs[slot].get());
   std::optional<Result> previous = s.segmentPending();  // while the worker analyses the frame
   s.pending = slot;
   return previous;
@@ -137,8 +157,7 @@ std::optional<Result> StreamSegmenter::flush() {
 
 void StreamSegmenter::reset() {
   impl_->settle();
-  impl_->pending = -1;
-  impl_->loop.reset();
+  impl_->restart();
 }
 
 const Params& StreamSegmenter::params() const { return impl_->loop.params(); }

@@ -1,5 +1,6 @@
 // Output files appear whole or not at all: written to a temporary name beside the target, then
 // renamed over it (rename is atomic on POSIX), so an interrupted run never leaves half a file.
+// Every write is checked: a full disk or a file-size limit is an error naming the file.
 #pragma once
 
 #include <string>
@@ -13,5 +14,24 @@ namespace movseg {
 void writeImageAtomic(const std::string& path, const cv::Mat& image);
 
 void writeTextAtomic(const std::string& path, const std::string& text);
+
+// A text file grown line by line under PATH.part and renamed to PATH by close(). It holds whole
+// lines only: a line that cannot be written completely is cut off again and append() throws.
+class LineFile {
+ public:
+  // Throws std::runtime_error when PATH.part cannot be created.
+  explicit LineFile(std::string path);
+  ~LineFile();  // closes the file descriptor; PATH.part stays when close() was not called
+  LineFile(const LineFile&) = delete;
+  LineFile& operator=(const LineFile&) = delete;
+
+  void append(const std::string& line);  // adds line + '\n'
+  void close();                          // renames PATH.part to PATH; throws when it cannot
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+  long long size_ = 0;  // bytes of whole lines written
+};
 
 }  // namespace movseg

@@ -21,11 +21,10 @@ bool isImageFile(const fs::path& path) {
   return std::find(std::begin(kExtensions), std::end(kExtensions), ext) != std::end(kExtensions);
 }
 
-class ImageFolderSource : public FrameSource {
+// Image files read in order: a folder's, or a pattern's.
+class ImageListSource : public FrameSource {
  public:
-  explicit ImageFolderSource(const std::string& folder) : files_(listImages(folder)) {
-    if (files_.empty()) throw std::runtime_error("no images in folder '" + folder + "'");
-  }
+  explicit ImageListSource(std::vector<std::string> files) : files_(std::move(files)) {}
   bool read(cv::Mat* frame) override {
     if (next_ >= files_.size()) return false;
     current_ = files_[next_++];
@@ -33,7 +32,11 @@ class ImageFolderSource : public FrameSource {
     if (frame->empty()) throw std::runtime_error("cannot decode image '" + current_ + "'");
     return true;
   }
-  int frameCount() const override { return static_cast<int>(files_.size()); }
+  SourceReport report() const override {
+    SourceReport report;
+    report.expected_frames = static_cast<int>(files_.size());
+    return report;
+  }
   std::string describe() const override { return current_; }
 
  private:
@@ -44,31 +47,126 @@ class ImageFolderSource : public FrameSource {
 
 class VideoSource : public FrameSource {
  public:
-  VideoSource(const std::string& name, cv::VideoCapture capture)
-      : name_(name), capture_(std::move(capture)) {
-    const double count = capture_.get(cv::CAP_PROP_FRAME_COUNT);
-    count_ = count > 0 ? static_cast<int>(count) : -1;
-  }
+  VideoSource(const std::string& name, const DecoderLimits& limits) : name_(name), decoder_(name, limits) {}
   bool read(cv::Mat* frame) override {
-    if (!capture_.read(*frame) || frame->empty()) return false;
+    if (!decoder_.read(frame)) return false;
     ++index_;
     return true;
   }
-  int frameCount() const override { return count_; }
-  std::string describe() const override {
-    return name_ + " frame " + std::to_string(index_ - 1);
+  SourceReport report() const override {
+    SourceReport report;
+    report.expected_frames = decoder_.expectedFrames();
+    report.exact_count = decoder_.exactCount();
+    report.fps = decoder_.fps();
+    report.decode_errors = decoder_.errors();
+    report.last_error = decoder_.lastError();
+    report.timed_out = decoder_.timedOut();
+    return report;
   }
+  std::string describe() const override { return name_ + " frame " + std::to_string(index_ - 1); }
 
  private:
   std::string name_;
-  cv::VideoCapture capture_;
-  int count_ = -1;
+  VideoDecoder decoder_;
   int index_ = 0;
+};
+
+class CameraSource : public FrameSource {
+ public:
+  explicit CameraSource(int index) : index_(index), capture_(index) {
+    if (!capture_.isOpened()) throw std::runtime_error("cannot open camera " + std::to_string(index));
+  }
+  bool read(cv::Mat* frame) override {
+    if (!capture_.read(*frame) || frame->empty()) return false;
+    ++frames_;
+    return true;
+  }
+  SourceReport report() const override {
+    SourceReport report;
+    report.fps = capture_.get(cv::CAP_PROP_FPS);
+    return report;
+  }
+  std::string describe() const override {
+    return "camera " + std::to_string(index_) + " frame " + std::to_string(frames_ - 1);
+  }
+
+ private:
+  int index_;
+  cv::VideoCapture capture_;
+  int frames_ = 0;
 };
 
 bool isCameraIndex(const std::string& input) {
   return !input.empty() && input.size() <= 3 &&
          std::all_of(input.begin(), input.end(), [](unsigned char c) { return std::isdigit(c); });
+}
+
+bool isUrl(const std::string& input) { return input.find("://") != std::string::npos; }
+
+// A printf pattern of numbered files, "frames/%05d.jpg": one %d with an optional zero-padded
+// width, "%%" for a percent sign. Expanded by hand: the pattern is never a format string.
+struct FramePattern {
+  std::string prefix, suffix;
+  int width = 0;
+  bool zeros = false;
+
+  std::string path(int number) const {
+    std::string digits = std::to_string(number);
+    if (static_cast<int>(digits.size()) < width) {
+      digits.insert(0, static_cast<size_t>(width) - digits.size(), zeros ? '0' : ' ');
+    }
+    return prefix + digits + suffix;
+  }
+};
+
+// Fills *pattern when `input` holds exactly one integer conversion.
+bool parsePattern(const std::string& input, FramePattern* pattern) {
+  std::string* part = &pattern->prefix;
+  int conversions = 0;
+  for (size_t i = 0; i < input.size(); ++i) {
+    if (input[i] != '%') {
+      *part += input[i];
+      continue;
+    }
+    if (i + 1 < input.size() && input[i + 1] == '%') {
+      *part += input[++i];
+      continue;
+    }
+    size_t j = i + 1;
+    pattern->zeros = j < input.size() && input[j] == '0';
+    std::string width;
+    while (j < input.size() && std::isdigit(static_cast<unsigned char>(input[j]))) width += input[j++];
+    if (j >= input.size() || input[j] != 'd' || width.size() > 2) return false;
+    pattern->width = width.empty() ? 0 : std::stoi(width);
+    part = &pattern->suffix;
+    ++conversions;
+    i = j;
+  }
+  return conversions == 1;
+}
+
+// The files of a pattern: from the first number in 0..4 that exists (as FFmpeg's image2
+// reader starts) up to the first number missing after it.
+std::vector<std::string> patternFiles(const FramePattern& pattern) {
+  std::error_code error;
+  int number = 0;
+  while (number < 5 && !fs::is_regular_file(pattern.path(number), error)) ++number;
+  std::vector<std::string> files;
+  while (fs::is_regular_file(pattern.path(number), error)) files.push_back(pattern.path(number++));
+  return files;
+}
+
+// The folder itself when it holds images, else its frames/ when there is one (a sequence).
+std::string imageFolder(const std::string& folder) {
+  const std::string frames = (fs::path(folder) / "frames").string();
+  std::error_code error;
+  return listImages(folder).empty() && fs::is_directory(frames, error) ? frames : folder;
+}
+
+std::vector<std::string> folderImages(const std::string& folder) {
+  std::vector<std::string> files = listImages(imageFolder(folder));
+  if (files.empty()) throw std::runtime_error("no images in folder '" + folder + "' (nor in its frames/)");
+  return files;
 }
 
 }  // namespace
@@ -90,22 +188,35 @@ cv::Mat decodeImage(const std::string& path, int flags) {
   }
 }
 
-std::unique_ptr<FrameSource> FrameSource::open(const std::string& input) {
+std::string inputPath(const std::string& input) {
   std::error_code error;
-  if (fs::is_directory(input, error)) return std::make_unique<ImageFolderSource>(input);
-  cv::VideoCapture capture;
-  if (fs::is_regular_file(input, error)) {
+  if (fs::is_directory(input, error)) return imageFolder(input);
+  if (fs::exists(input, error)) return input;
+  FramePattern pattern;
+  if (parsePattern(input, &pattern)) return fs::path(input).parent_path().string();
+  return "";
+}
+
+std::unique_ptr<FrameSource> FrameSource::open(const std::string& input, const DecoderLimits& limits) {
+  if (input.empty()) throw std::runtime_error("the input path is empty");
+  std::error_code error;
+  if (fs::is_directory(input, error)) return std::make_unique<ImageListSource>(folderImages(input));
+  FramePattern pattern;
+  if (fs::exists(input, error) || isUrl(input)) {
     if (isImageFile(input)) throw std::runtime_error("'" + input + "' is a single image, not a video");
-    capture.open(input, cv::CAP_FFMPEG);
-  } else if (isCameraIndex(input)) {
-    capture.open(std::stoi(input));
-  } else if (input.find("://") != std::string::npos) {
-    capture.open(input, cv::CAP_FFMPEG);
-  } else {
-    throw std::runtime_error("cannot open '" + input + "': no such file or folder");
+    try {
+      return std::make_unique<VideoSource>(input, limits);
+    } catch (const std::runtime_error& e) {
+      throw std::runtime_error("cannot open video '" + input + "': " + e.what());
+    }
   }
-  if (!capture.isOpened()) throw std::runtime_error("cannot open video '" + input + "'");
-  return std::make_unique<VideoSource>(input, std::move(capture));
+  if (parsePattern(input, &pattern)) {
+    std::vector<std::string> files = patternFiles(pattern);
+    if (files.empty()) throw std::runtime_error("no image matches the pattern '" + input + "'");
+    return std::make_unique<ImageListSource>(std::move(files));
+  }
+  if (isCameraIndex(input)) return std::make_unique<CameraSource>(std::stoi(input));
+  throw std::runtime_error("cannot open '" + input + "': no such file or folder");
 }
 
 }  // namespace movseg

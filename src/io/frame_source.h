@@ -1,5 +1,7 @@
-// Where frames come from: a video file or stream URL (anything OpenCV's FFmpeg backend opens),
-// a folder of images sorted by name, or a camera index.
+// Where frames come from, one input grammar for every command: a video file or stream URL
+// (decoded by FFmpeg), a folder of images sorted by name, a sequence folder holding frames/
+// (DAVIS, `movseg synth`), a printf pattern of numbered images (frames/%05d.jpg), or a camera
+// index.
 #pragma once
 
 #include <memory>
@@ -8,7 +10,19 @@
 
 #include <opencv2/core.hpp>
 
+#include "io/video_decoder.h"
+
 namespace movseg {
+
+// What a source knows about its stream besides the frames.
+struct SourceReport {
+  int expected_frames = -1;   // frames in total when known up front (folders, most files)
+  bool exact_count = true;    // false: expected_frames is estimated from a duration
+  double fps = 0;             // the frame rate it says it runs at; 0 when it does not say
+  int decode_errors = 0;      // errors the decoder reported so far
+  std::string last_error;     // the last one, in one line
+  bool timed_out = false;     // the last read() gave up at the timeout
+};
 
 class FrameSource {
  public:
@@ -16,15 +30,19 @@ class FrameSource {
   // Next frame as decoded (any depth and channel count); false at the end. Throws
   // std::runtime_error when a frame cannot be read (corrupt image file).
   virtual bool read(cv::Mat* frame) = 0;
-  // Frames in total when known up front (folders, most files), else -1.
-  virtual int frameCount() const = 0;
-  // Name of the current frame for messages, e.g. "frames/00012.png" or "frame 12".
+  virtual SourceReport report() const = 0;
+  // Name of the current frame for messages, e.g. "frames/00012.png" or "clip.mp4 frame 12".
   virtual std::string describe() const = 0;
 
-  // Opens `input`: an existing folder, an existing file, a string of digits (camera index) or a
-  // URL with "://". Throws std::runtime_error with a one-line reason when it cannot be opened.
-  static std::unique_ptr<FrameSource> open(const std::string& input);
+  // Opens `input` (the grammar above; a path that exists wins over a pattern or a camera
+  // index). Throws std::runtime_error with a one-line reason when it cannot be opened.
+  static std::unique_ptr<FrameSource> open(const std::string& input,
+                                           const DecoderLimits& limits = {});
 };
+
+// The file or folder on disk that `input` reads (for a pattern, its folder); "" for a camera or
+// a URL. Outputs must stay out of it.
+std::string inputPath(const std::string& input);
 
 // The image files of a folder (by extension, case-insensitive), sorted by name.
 std::vector<std::string> listImages(const std::string& folder);

@@ -6,7 +6,8 @@
 
 namespace movseg {
 
-cv::Mat drawOverlay(const cv::Mat& frame, const Result& result, const std::string& hud) {
+cv::Mat drawOverlay(const cv::Mat& frame, const Result& result, const std::string& hud,
+                    bool feature_dots) {
   cv::Mat canvas = toBgr8(frame).clone();
   if (!result.mask.empty()) {
     cv::Mat tint(canvas.size(), CV_8UC3, cv::Scalar(0, 0, 255));
@@ -17,7 +18,7 @@ cv::Mat drawOverlay(const cv::Mat& frame, const Result& result, const std::strin
     cv::findContours(result.mask.clone(), contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
     cv::drawContours(canvas, contours, -1, cv::Scalar(0, 0, 255), 2, cv::LINE_AA);
   }
-  for (const Feature& f : result.features) {
+  for (const Feature& f : feature_dots ? result.features : std::vector<Feature>()) {
     cv::Scalar colour(0, 255, 255);
     if (f.label == FeatureLabel::kForeground) colour = cv::Scalar(0, 0, 255);
     if (f.label == FeatureLabel::kBackground) colour = cv::Scalar(255, 128, 0);

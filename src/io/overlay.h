@@ -10,7 +10,9 @@
 
 namespace movseg {
 
-// `frame` is the input as given (converted to 8-bit BGR here); `hud` is drawn top-left.
-cv::Mat drawOverlay(const cv::Mat& frame, const Result& result, const std::string& hud);
+// `frame` is the input as given (converted to 8-bit BGR here); `hud` is drawn top-left; the
+// features are drawn when `feature_dots` is set.
+cv::Mat drawOverlay(const cv::Mat& frame, const Result& result, const std::string& hud,
+                    bool feature_dots = true);
 
 }  // namespace movseg

@@ -3,8 +3,10 @@
 // what remains becomes evidence of independent motion, scaled by the pair's own background
 // residual. The previous mask, carried by the flow, and colour models learnt over the stream
 // add what one pair cannot see; a graph cut on the evidence and the image's edges makes the mask.
+// A scene cut empties the mask and the memory: what the new scene moves is learnt anew.
 #include <opencv2/imgproc.hpp>
 
+#include "classify/scene_cut.h"
 #include "core/frame.h"
 #include "core/timing.h"
 #include "cut/evidence_cut.h"
@@ -12,6 +14,7 @@
 #include "evidence/motion_evidence.h"
 #include "flow/dense_flow.h"
 #include "flow/flow_camera.h"
+#include "motion/compensation.h"
 #include "motion/model.h"
 #include "pipelines/pipeline.h"
 
@@ -29,14 +32,19 @@ struct DenseAnalysis : Analysis {
   double prepare_ms = 0, flow_ms = 0;
 };
 
-// Keeps the frame's images for the next pair on every way out of segment().
+// The last segmented frame at the working scale, for the next pair (the analysis holding it is
+// reused for a later frame).
+struct PreviousFrame {
+  cv::Mat bgr, grey;
+};
+
+// Copies the frame's images into `previous` on every way out of segment().
 struct Remember {
   const DenseAnalysis& frame;
-  cv::Mat* previous_grey;
-  cv::Mat* previous_bgr;
+  PreviousFrame* previous;
   ~Remember() {
-    frame.grey.copyTo(*previous_grey);
-    frame.bgr.copyTo(*previous_bgr);
+    frame.bgr.copyTo(previous->bgr);
+    frame.grey.copyTo(previous->grey);
   }
 };
 
@@ -82,15 +90,11 @@ class DensePipeline : public Pipeline {
     const auto& a = static_cast<const DenseAnalysis&>(analysis);
     Diagnostics& diag = result->diagnostics;
     diag.prepare_ms = a.prepare_ms;
-    const Remember remember{a, &previous_grey_, &previous_bgr_};
+    diag.motion_ms = a.flow_ms;
+    const Remember remember{a, &previous_};
     has_compensated_ = false;
     input_size_ = a.input_size;
-    if (a.first_frame || a.flow.empty()) {
-      colour_.reset();
-      mask_.release();  // no memory yet: the first pair has no mask to carry
-      diag.motion_ms = a.flow_ms;
-      return cv::Mat::zeros(a.bgr.size(), CV_8U);
-    }
+    if (a.first_frame || a.flow.empty()) return forget(a.bgr.size());
     Clock::time_point start = Clock::now();
     cv::Mat carried, evidence;
     flowMap(a.flow, &flow_map_);
@@ -98,14 +102,21 @@ class DensePipeline : public Pipeline {
     const FlowCamera camera = fitFlowCamera(a.flow, a.texture, carried, params_, rng_);
     residualMotion(a.flow, camera, &residual_);
     cameraMap(camera.model, a.grey.size(), &camera_map_);
-    cv::remap(previous_bgr_, compensated_, camera_map_, cv::noArray(), cv::INTER_LINEAR,
+    cv::remap(previous_.bgr, compensated_, camera_map_, cv::noArray(), cv::INTER_LINEAR,
               cv::BORDER_CONSTANT);
     has_compensated_ = true;
-    diag.motion_ms = a.flow_ms + millisecondsSince(start);
+    diag.motion_ms += millisecondsSince(start);
+    describe(camera, a.scale, &diag);
 
     start = Clock::now();
-    photometric_.confirm(a.grey, previous_grey_, flow_map_, camera_map_, params_, &confirmation_);
+    // The fit maps current to previous working pixels; eq. (4) warps previous to current.
+    const cv::Matx33d to_current = camera.model.inv();
+    diag.scene_cut =
+        isSceneCut(compensatedDifference(previous_.bgr, a.bgr, to_current), to_current);
+    if (diag.scene_cut) return forget(a.bgr.size());
+    photometric_.confirm(a.grey, previous_.grey, flow_map_, camera_map_, params_, &confirmation_);
     const float scale = residualScale(unconfirmedResiduals(camera, confirmation_), params_);
+    diag.residual_scale = scale;
     motionEvidence(residual_, scale, params_, &evidence);
     confirmMotion(confirmation_, &evidence);
     if (!carried.empty()) addMemory(carried, params_, &evidence);
@@ -124,7 +135,6 @@ class DensePipeline : public Pipeline {
       confirmation_.convertTo(picture, CV_8U, 255);
       return picture;
     });
-    describe(camera, scale, a.scale, &diag);
     return mask_;
   }
 
@@ -141,8 +151,14 @@ class DensePipeline : public Pipeline {
   }
 
  private:
-  static void describe(const FlowCamera& camera, float scale, double working_scale,
-                       Diagnostics* diag) {
+  // A stream's first pair, or the first after a scene cut: no mask to carry, no colours known.
+  cv::Mat forget(cv::Size size) {
+    colour_.reset();
+    mask_.release();
+    return cv::Mat::zeros(size, CV_8U);
+  }
+
+  static void describe(const FlowCamera& camera, double working_scale, Diagnostics* diag) {
     // The fit maps current to previous working pixels; diagnostics speak of previous to
     // current, at full resolution.
     diag->model = rescaleModel(camera.model.inv(), 1.0 / working_scale);
@@ -150,7 +166,6 @@ class DensePipeline : public Pipeline {
     diag->model_is_affine = isAffine(diag->model);
     diag->matches = static_cast<int>(camera.at.size());
     diag->motion_fallback = camera.fallback;
-    diag->residual_scale = scale;
     diag->parallax = camera.epipole.has_value();
   }
 
@@ -162,8 +177,8 @@ class DensePipeline : public Pipeline {
   cv::Mat residual_, confirmation_;
   cv::Mat flow_map_, camera_map_;
   PhotometricCheck photometric_;
-  cv::Mat previous_grey_, previous_bgr_;  // the last segmented frame's, at the working scale
-  cv::Mat compensated_;  // previous_bgr_ of the pair brought to the current frame by the camera
+  PreviousFrame previous_;
+  cv::Mat compensated_;  // previous_.bgr of the pair brought to the current frame by the camera
   bool has_compensated_ = false;
   cv::Size input_size_;
   cv::Mat halved_;  // scratch of downscale()

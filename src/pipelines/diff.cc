@@ -1,6 +1,7 @@
 // `diff`: the compensated frame difference of §3.1 thresholded by eq. (3) — the paper's pipeline
 // cut off before §3.2 (no GMM refinement, no geodesic cut). A baseline.
 #include "classify/classify.h"
+#include "classify/scene_cut.h"
 #include "core/timing.h"
 #include "motion/camera_tracker.h"
 #include "motion/model.h"
@@ -30,9 +31,10 @@ class DiffPipeline : public Pipeline {
     const PreparedFrame& cur = step.current->image;
     if (step.previous == nullptr) return cv::Mat::zeros(cur.seg_bgr.size(), CV_8U);
     const Clock::time_point start = Clock::now();
-    const cv::Mat d = compensatedDifference(step.previous->image.seg_smooth, cur.seg_smooth,
-                                            rescaleModel(step.model, cur.seg_scale));
+    const cv::Matx33d model = rescaleModel(step.model, cur.seg_scale);
+    const cv::Mat d = compensatedDifference(step.previous->image.seg_smooth, cur.seg_smooth, model);
     debug.put("difference", [&] { return drawDifference(d); });
+    diag.scene_cut = isSceneCut(d, model);
     diag.lambda = chooseLambda(d, step.staticPoints(cur.seg_scale), params_);
     diag.classify_ms = millisecondsSince(start);
     return d > diag.lambda;

@@ -4,6 +4,7 @@
 
 #include "classify/classify.h"
 #include "classify/classify_debug.h"
+#include "classify/scene_cut.h"
 #include "core/timing.h"
 #include "cut/cut_debug.h"
 #include "cut/graph_cut.h"
@@ -92,9 +93,11 @@ class PaperPipeline : public Pipeline {
     const PreparedFrame& cur = step.current->image;
     Diagnostics& diag = result->diagnostics;
     Clock::time_point start = Clock::now();
-    const cv::Mat difference = compensatedDifference(  // eq. (4)
-        prev.seg_smooth, cur.seg_smooth, rescaleModel(step.model, cur.seg_scale));
+    const cv::Matx33d model = rescaleModel(step.model, cur.seg_scale);
+    // eq. (4)
+    const cv::Mat difference = compensatedDifference(prev.seg_smooth, cur.seg_smooth, model);
     debug.put("difference", [&] { return drawDifference(difference); });
+    diag.scene_cut = isSceneCut(difference, model);
     const std::vector<cv::Point2f> points = featuresAtSegmentationScale(*step.current);
     const FeatureClasses classes = classifyFeatures(
         difference, cur.seg_bgr, points, step.staticPoints(cur.seg_scale), params_);

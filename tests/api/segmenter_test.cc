@@ -97,6 +97,42 @@ TEST(Segmenter, DebugPicturesWhenAsked) {
   EXPECT_FALSE(segmenter.compensatedPreviousFrame().empty());
 }
 
+// OpenCV's warps take less than 32767 pixels a side; a frame that would exceed it at a working
+// scale is refused up front, as invalid_argument, and the stream goes on.
+TEST(Segmenter, FramesBeyondTheWarpsLimitAreRefusedUpFront) {
+  Segmenter segmenter;
+  const cv::Mat ordinary(48, 64, CV_8UC3, cv::Scalar(90, 120, 150));
+  segmenter.process(ordinary);
+  EXPECT_THROW(segmenter.process(cv::Mat(100000, 10, CV_8U, cv::Scalar(0))), std::invalid_argument);
+  EXPECT_THROW(segmenter.process(cv::Mat(33000, 64, CV_8U, cv::Scalar(0))), std::invalid_argument);
+  EXPECT_FALSE(segmenter.process(ordinary).diagnostics.first_frame);  // the stream went on
+
+  Params native;
+  native.alignment_width = 0;
+  native.segmentation_width = 0;
+  EXPECT_THROW(Segmenter(native).process(cv::Mat(1, 100000, CV_8U, cv::Scalar(0))),
+               std::invalid_argument);
+  // Scaled down to 320 wide, the same frame is fine.
+  EXPECT_EQ(Segmenter().process(cv::Mat(1, 100000, CV_8U, cv::Scalar(0))).mask.size(),
+            cv::Size(100000, 1));
+}
+
+// Whatever OpenCV throws leaves as std::runtime_error with its one-line reason: here the warp
+// of a 40000-wide previous frame at full resolution.
+TEST(Segmenter, OpenCvFailuresBecomeRuntimeErrors) {
+  Segmenter segmenter(paper());  // it warps the full-resolution frame
+  const cv::Mat wide(8, 40000, CV_8UC3, cv::Scalar(10, 20, 30));
+  segmenter.process(wide);
+  segmenter.process(wide);
+  try {
+    segmenter.compensatedPreviousFrame();
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("OpenCV failed"), std::string::npos) << e.what();
+  }
+}
+
 // Float frames are read as [0, 1]; one in 0-255 would saturate to white and give an empty mask
 // in silence, so it is refused with a message that says what to pass instead.
 TEST(Segmenter, RejectsFloatFramesOutsideTheUnitRange) {

@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "movseg/fields.h"
+#include "movseg/segmenter.h"
 #include "movseg/stream_segmenter.h"
 #include "reliability/reliability_fixture.h"
 #include "test_support.h"
@@ -79,6 +80,29 @@ TEST_P(Stream, ABadFrameIsRefusedAndTheStreamGoesOn) {
   ASSERT_TRUE(first.has_value());
   EXPECT_TRUE(first->diagnostics.first_frame);
   EXPECT_FALSE(stream.flush()->diagnostics.first_frame);
+}
+
+// A stream over the work limit runs a pipeline made with lowered parameters; a size change to a
+// stream under it makes another, while the previous stream's last frame is still segmented with
+// the first (on two threads, at the same time).
+TEST_P(Stream, WorkLimitedStreamsGiveTheSegmentersMasks) {
+  Params p = params();
+  p.alignment_width = 0;
+  p.segmentation_width = 0;
+  p.edge_cell = 2;         // paper, diff, mog2-comp: 30,500 features at 400x300, 5,300 at 160x120
+  p.flow_sample_step = 1;  // dense: 120,000 flow samples at 400x300, 19,200 at 160x120
+  std::vector<cv::Mat> frames = test::synthFrames(7, 9, {400, 300});
+  for (const size_t t : {0, 1, 5, 6}) cv::resize(frames[t], frames[t], {160, 120});
+  Segmenter segmenter(p);
+  std::vector<cv::Mat> expected;
+  for (size_t t = 0; t < frames.size(); ++t) {
+    const Result r = segmenter.process(frames[t]);
+    expected.push_back(r.mask);
+    // mog2's only cost is its scale, under a megapixel here.
+    EXPECT_EQ(r.diagnostics.work_limited, frames[t].cols == 400 && p.method != Method::kMog2) << t;
+  }
+  StreamSegmenter stream(p, GetParam().threads);
+  EXPECT_TRUE(test::identical(streamed(stream, frames), expected));
 }
 
 std::vector<Case> everyMethodOnOneAndTwoThreads() {

@@ -16,14 +16,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Exactly one line, naming the problem.
-void expectOneLineError(const test::CommandResult& r, const std::string& needle) {
-  EXPECT_NE(r.exit_code, 0);
-  EXPECT_EQ(r.output.rfind("movseg: error: ", 0), 0u) << r.output;
-  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
-  EXPECT_NE(r.output.find(needle), std::string::npos) << r.output;
-}
-
 std::string synthClip(const test::TempDir& dir, int frames) {
   EXPECT_EQ(test::runCli("synth -o " + dir / "clip" + " --frames " + std::to_string(frames))
                 .exit_code, 0);
@@ -55,7 +47,8 @@ TEST(SegmentCli, WritesOneMaskPerFrameAndStatsLines) {
     EXPECT_EQ(j.at("model").size(), 3u);  // 3 rows of 3
     EXPECT_EQ(j.at("model")[0].size(), 3u);
     for (const FieldInfo& field : diagnosticFields()) EXPECT_TRUE(j.contains(field.name)) << field.name;
-    EXPECT_EQ(j.size(), diagnosticFields().size() + 1);  // and "frame"
+    EXPECT_EQ(j.size(), diagnosticFields().size() + 2);  // and "frame", "decode_errors"
+    EXPECT_EQ(j.at("decode_errors").get<int>(), 0);
     EXPECT_GT(j.at("total_ms").get<double>(), 0.0);
     EXPECT_EQ(j.at("first_frame").get<bool>(), lines == 0);
     ++lines;
@@ -79,7 +72,7 @@ TEST(SegmentCli, DebugWritesEachStagesPictures) {
 
 TEST(SegmentCli, MissingInput) {
   const test::TempDir dir;
-  expectOneLineError(test::runCli("segment " + dir / "nothing.mp4" + " -o " + dir / "out"),
+  test::expectOneLineError(test::runCli("segment " + dir / "nothing.mp4" + " -o " + dir / "out"),
                      "nothing.mp4");
 }
 
@@ -89,7 +82,7 @@ TEST(SegmentCli, EmptyAndUnreadableVideos) {
   { std::ofstream(dir / "junk.mp4") << "this is not a video at all"; }
   for (const char* name : {"empty.mp4", "junk.mp4"}) {
     const test::CommandResult r = test::runCli("segment " + dir / name + " -o " + dir / "out");
-    expectOneLineError(r, name);
+    test::expectOneLineError(r, name);
     EXPECT_FALSE(fs::exists(dir / "out/00000.png"));
   }
 }
@@ -98,7 +91,7 @@ TEST(SegmentCli, FolderWithoutImages) {
   const test::TempDir dir;
   fs::create_directories(dir / "frames");
   { std::ofstream(dir / "frames/readme.txt") << "no images here"; }
-  expectOneLineError(test::runCli("segment " + dir / "frames" + " -o " + dir / "out"),
+  test::expectOneLineError(test::runCli("segment " + dir / "frames" + " -o " + dir / "out"),
                      "no images");
 }
 
@@ -106,7 +99,7 @@ TEST(SegmentCli, CorruptImageInAFolderIsNamed) {
   const test::TempDir dir;
   const std::string frames = synthClip(dir, 3);
   { std::ofstream(frames + "/00001.png", std::ios::trunc) << "garbage"; }
-  expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "out"), "00001.png");
+  test::expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "out"), "00001.png");
   EXPECT_TRUE(fs::exists(dir / "out/00000.png"));  // what came before is complete
   EXPECT_FALSE(fs::exists(dir / "out/00001.png"));
 }
@@ -114,15 +107,15 @@ TEST(SegmentCli, CorruptImageInAFolderIsNamed) {
 TEST(SegmentCli, UnknownOptionAndBadValues) {
   const test::TempDir dir;
   const std::string frames = synthClip(dir, 2);
-  expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "o" + " --frobnicate"),
+  test::expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "o" + " --frobnicate"),
                      "frobnicate");
-  expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "o" + " --lambda -3"),
+  test::expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "o" + " --lambda -3"),
                      "lambda");
-  expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "o" + " --gmm-k 0"),
+  test::expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "o" + " --gmm-k 0"),
                      "gmm_clusters");
-  expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "o" + " --set nope=1"),
+  test::expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "o" + " --set nope=1"),
                      "nope");
-  expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "o" + " --method magic"),
+  test::expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "o" + " --method magic"),
                      "magic");
 }
 
@@ -130,7 +123,7 @@ TEST(SegmentCli, UnwritableOutputFolder) {
   const test::TempDir dir;
   const std::string frames = synthClip(dir, 2);
   { std::ofstream(dir / "a-file") << "x"; }
-  expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "a-file/out"), "a-file");
+  test::expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "a-file/out"), "a-file");
 }
 
 // Grey, BGRA and 16-bit images are converted; a frame of another size restarts the segmenter.

@@ -25,11 +25,12 @@ def test_a_display_that_is_not_there_counts_as_none(cli, clip, tmp_path):
     assert done.returncode == 1 and "--show needs a display; none found" in done.stderr
 
 
-def test_a_stream_that_ends_says_so_and_keeps_its_masks(cli, clip, frames, tmp_path):
-    # Raw motion JPEG has no frame count, like a network stream or a camera.
+def test_a_stream_that_ends_keeps_its_masks(cli, clip, frames, tmp_path):
+    # Raw motion JPEG has no frame count, like a network stream or a camera: its end is an end,
+    # not a stall (that is a timeout: tests/reliability/input_faults_test.cc).
     stream = tmp_path / "clip.mjpeg"
     stream.write_bytes(b"".join(cv2.imencode(".jpg", f)[1].tobytes() for f in frames))
     done = run_cli(cli, "segment", str(stream), "-o", str(tmp_path / "masks"))
     assert done.returncode == 0, done.stderr
-    assert f"gave no more frames after {len(frames)} (the stream ended or stalled)" in done.stderr
+    assert "error" not in done.stderr
     assert len(read_masks(tmp_path / "masks")) == len(frames)

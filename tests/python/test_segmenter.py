@@ -102,6 +102,19 @@ def test_bad_frames_raise_value_error(frame):
         movseg.Segmenter().process(frame)
 
 
+def test_dimensions_beyond_int_raise_value_error():
+    wide = np.lib.stride_tricks.as_strided(np.zeros(1, np.uint8), shape=(1, 2**32 + 16),
+                                           strides=(0, 0))
+    with pytest.raises(ValueError, match="does not fit"):
+        movseg.Segmenter().process(wide)
+
+
+def test_frames_beyond_the_warps_limit_raise_value_error():
+    # 10 pixels wide, never scaled up: 100000 rows at both working scales, past remap's 32766.
+    with pytest.raises(ValueError, match="too large"):
+        movseg.Segmenter().process(np.zeros((100000, 10), np.uint8))
+
+
 def test_not_an_array_raises_a_short_type_error(frames):
     with pytest.raises(TypeError):
         movseg.Segmenter().process("frame.png")

@@ -29,6 +29,18 @@ def test_a_bad_frame_raises_cv2_error_as_mog2s_apply_does():
         subtractor.apply(np.zeros((4, 4, 2), np.uint8))
 
 
+# cv2 writes an output array in place or refuses it, as for MOG2: a view or a Fortran-ordered
+# fgmask is never left untouched in silence (a temporary copy written instead).
+@pytest.mark.parametrize("layout", ["view", "fortran"])
+def test_fgmask_of_another_layout_raises_cv2_error_as_mog2s_apply_does(frames, layout):
+    height, width = frames[0].shape[:2]
+    big = np.zeros((2 * height, 2 * width), np.uint8)
+    fgmask = big[::2, ::2] if layout == "view" else np.zeros((height, width), np.uint8, order="F")
+    for subtractor in movseg.createMovingCameraSubtractor(), cv2.createBackgroundSubtractorMOG2():
+        with pytest.raises(cv2.error, match="Layout of the output array fgmask is incompatible"):
+            subtractor.apply(frames[0], fgmask)
+
+
 def test_is_a_cv2_background_subtractor_whose_methods_all_run(frames):
     subtractor = movseg.createMovingCameraSubtractor(movseg.Params(method="diff"))
     assert type(subtractor) is cv2.BackgroundSubtractor

@@ -11,6 +11,7 @@
 
 #include "readers_input.h"
 #include "segmenter_input.h"
+#include "video_input.h"
 #include "test_support.h"
 
 namespace movseg {
@@ -53,6 +54,13 @@ TEST(FuzzCorpus, ReadersOnlyFailWithRuntimeErrors) {
   test::TempDir dir;
   replay("readers", [&](const std::uint8_t* data, std::size_t size) {
     fuzz::runReadersInput(data, size, dir / "scratch");
+  });
+}
+
+TEST(FuzzCorpus, VideosOnlyFailWithRuntimeErrors) {
+  test::TempDir dir;
+  replay("video", [&](const std::uint8_t* data, std::size_t size) {
+    fuzz::runVideoInput(data, size, dir / "input.video");
   });
 }
 

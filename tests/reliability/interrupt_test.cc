@@ -1,8 +1,6 @@
 // A run stopped by SIGINT or SIGTERM midway leaves only complete files, says so in one line and
 // exits with 130.
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -26,21 +24,6 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr int kFrames = 150;
-
-// `movseg ARGS...` started in the background, its stdout and stderr going to `log`.
-pid_t startCli(const std::vector<std::string>& args, const std::string& log) {
-  std::vector<char*> argv{const_cast<char*>(MOVSEG_CLI_PATH)};
-  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  pid_t pid = -1;
-  const int error = posix_spawn(&pid, MOVSEG_CLI_PATH, &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  return error == 0 ? pid : -1;
-}
 
 bool waitForFile(const std::string& path, std::chrono::seconds limit) {
   const auto end = std::chrono::steady_clock::now() + limit;
@@ -74,7 +57,7 @@ test::TempDir* Interrupt::clip_ = nullptr;
 TEST_P(Interrupt, MidwayLeavesCompleteFilesAndExits130) {
   test::TempDir dir;
   const std::string out = dir / "out", stats = dir / "out/stats.jsonl";
-  const pid_t pid = startCli({"segment", *clip_ / "clip/frames", "-o", out, "--stats", stats, "-q"},
+  const pid_t pid = test::startCli({"segment", *clip_ / "clip/frames", "-o", out, "--stats", stats, "-q"},
                              dir / "log.txt");
   ASSERT_GT(pid, 0);
   // The sixth mask exists: the run is midway, its signal handler installed.
@@ -88,7 +71,7 @@ TEST_P(Interrupt, MidwayLeavesCompleteFilesAndExits130) {
 
   int masks = 0;
   for (const std::string& name : test::filesIn(out)) {
-    if (name == "stats.jsonl") continue;
+    if (name == "stats.jsonl" || name == "movseg-run.json") continue;
     ASSERT_EQ(fs::path(name).extension(), ".png") << name;  // no *.part left behind
     const cv::Mat mask = cv::imread(out + "/" + name, cv::IMREAD_UNCHANGED);
     ASSERT_FALSE(mask.empty()) << name;
@@ -107,6 +90,9 @@ TEST_P(Interrupt, MidwayLeavesCompleteFilesAndExits130) {
     ++frame;
   }
   EXPECT_EQ(frame, masks);
+  const nlohmann::json manifest = nlohmann::json::parse(textOf(out + "/movseg-run.json"));
+  EXPECT_EQ(manifest.at("frames_done").get<int>(), masks);
+  EXPECT_FALSE(manifest.at("finished").get<bool>());
 }
 
 std::string signalName(const ::testing::TestParamInfo<int>& signal) {

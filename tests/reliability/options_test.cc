@@ -1,5 +1,6 @@
 // Out-of-range parameters and options are refused with one clear line, never run (an absurd
 // value could otherwise make a frame that never ends).
+#include <fstream>
 #include <functional>
 #include <limits>
 #include <string>
@@ -7,6 +8,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "movseg/fields.h"
 #include "test_support.h"
@@ -65,13 +67,35 @@ TEST(Options, EveryParameterIsSetByNameOrByItsOption) {
     for (char& c : option) c = c == '_' ? '-' : c;
     by_option += " --" + option + (field.type == FieldType::kBool ? "=" : " ") + value;
   }
-  const std::string segment = "segment " + (dir / "clip/frames") + " -o " + (dir / "out") + " -q";
+  const std::string segment =
+      "segment " + (dir / "clip/frames") + " -o " + (dir / "out") + " -q --overwrite";
   for (const std::string& options : {by_set, by_option}) {
     const test::CommandResult run = test::runCli(segment + options);
     EXPECT_EQ(run.exit_code, 0) << options << "\n" << run.output;
   }
   const test::CommandResult run = test::runCli(segment + " --set static_camera=TRUE --static");
   EXPECT_EQ(run.exit_code, 0) << run.output;
+}
+
+// Booleans of --set are true, false, 1 or 0 in any case, and they take effect: a static camera
+// tracks nothing.
+TEST(Options, SetBooleansInAnyCaseTakeEffect) {
+  test::TempDir dir;
+  ASSERT_EQ(test::runCli("synth -o " + (dir / "clip") + " --frames 2 --size 96x72").exit_code, 0);
+  const auto tracksOfSecondFrame = [&](const std::string& value) {
+    const std::string stats = dir / "stats.jsonl";
+    const test::CommandResult run =
+        test::runCli("segment " + (dir / "clip/frames") + " -o " + (dir / "out") +
+                     " -q --overwrite --method paper --stats " + stats + " --set static_camera=" + value);
+    EXPECT_EQ(run.exit_code, 0) << value << "\n" << run.output;
+    std::ifstream in(stats);
+    std::string line;
+    std::getline(in, line);
+    std::getline(in, line);
+    return nlohmann::json::parse(line).at("tracks").get<int>();
+  };
+  for (const std::string value : {"TRUE", "True", "true", "1"}) EXPECT_EQ(tracksOfSecondFrame(value), 0) << value;
+  for (const std::string value : {"FALSE", "False", "false", "0"}) EXPECT_GT(tracksOfSecondFrame(value), 0) << value;
 }
 
 }  // namespace

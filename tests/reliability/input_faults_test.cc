@@ -1,0 +1,185 @@
+// Issue 15's input faults through `movseg segment`: a video whose frame size changes midway,
+// damaged and truncated videos, silent and stalled streams, special files; and issue 14's one
+// input grammar (printf patterns, sequence folders).
+#include <signal.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+#include <thread>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "reliability/reliability_fixture.h"
+#include "test_support.h"
+
+namespace movseg {
+namespace {
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+constexpr int kRunFailed = 1;
+
+std::string h264(const test::TempDir& dir, const std::string& name, const std::string& size, int frames,
+                 const std::string& extra = "") {
+  EXPECT_TRUE(test::ffmpeg("-f lavfi -i testsrc2=size=" + size + ":rate=25 -frames:v " +
+                           std::to_string(frames) + " -c:v libx264 -pix_fmt yuv420p " + extra + " " +
+                           dir / name));
+  return dir / name;
+}
+
+std::vector<nlohmann::json> statsLines(const std::string& path) {
+  std::vector<nlohmann::json> lines;
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line)) lines.push_back(nlohmann::json::parse(line));
+  return lines;
+}
+
+TEST(InputFaults, AVideoWhoseSizeChangesRestartsTheSegmenterOnEachPart) {
+  const test::TempDir dir;
+  h264(dir, "a.mp4", "320x240", 8);
+  h264(dir, "b.mp4", "256x144", 8);
+  { std::ofstream(dir / "list.txt") << "file 'a.mp4'\nfile 'b.mp4'\n"; }
+  ASSERT_TRUE(test::ffmpeg("-f concat -safe 0 -i " + dir / "list.txt" + " -c copy " + dir / "ab.mkv"));
+  const test::CommandResult r =
+      test::runCli("segment " + dir / "ab.mkv" + " -o " + dir / "out" + " --stats " + dir / "s.jsonl");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("1 size resets"), std::string::npos) << r.output;
+  const std::vector<nlohmann::json> lines = statsLines(dir / "s.jsonl");
+  ASSERT_EQ(lines.size(), 16u);
+  for (size_t i = 0; i < lines.size(); ++i) EXPECT_EQ(lines[i].at("reset").get<bool>(), i == 8) << i;
+  EXPECT_EQ(cv::imread(dir / "out/00007.png", cv::IMREAD_UNCHANGED).size(), cv::Size(320, 240));
+  EXPECT_EQ(cv::imread(dir / "out/00008.png", cv::IMREAD_UNCHANGED).size(), cv::Size(256, 144));
+  // That the second part is not scrambled: video_decoder_test.cc compares it pixel for pixel.
+}
+
+std::string damaged(const test::TempDir& dir) {
+  const std::string path = h264(dir, "d.mp4", "320x240", 40);
+  std::fstream file(path, std::ios::in | std::ios::out | std::ios::binary);
+  file.seekp(static_cast<std::streamoff>(fs::file_size(path) * 4 / 10));
+  std::mt19937 random(7);
+  for (int i = 0; i < 4096; ++i) file.put(static_cast<char>(random()));
+  return path;
+}
+
+TEST(InputFaults, ADamagedVideoIsSegmentedAndReportedAsFailed) {
+  const test::TempDir dir;
+  const std::string video = damaged(dir);
+  const test::CommandResult r = test::runCli("segment " + video + " -o " + dir / "out" + " -q --stats " +
+                                             dir / "s.jsonl");
+  test::expectOneLineError(r, "decode errors", kRunFailed);
+  const std::vector<nlohmann::json> lines = statsLines(dir / "s.jsonl");
+  EXPECT_GT(lines.size(), 20u);
+  int errors = 0;
+  for (const nlohmann::json& line : lines) errors += line.at("decode_errors").get<int>();
+  EXPECT_GT(errors, 0);
+  const nlohmann::json manifest = nlohmann::json::parse(std::ifstream(dir / "out/movseg-run.json"));
+  EXPECT_GT(manifest.at("decode_errors").get<int>(), 0);
+  EXPECT_EQ(manifest.at("frames_done").get<size_t>(), lines.size());
+}
+
+TEST(InputFaults, StopOnDecodeErrorStopsAtTheFirst) {
+  const test::TempDir dir;
+  const std::string video = damaged(dir);
+  const test::CommandResult r =
+      test::runCli("segment " + video + " -o " + dir / "out" + " -q --stop-on-decode-error");
+  test::expectOneLineError(r, "decode error", kRunFailed);
+  const size_t masks = test::filesIn(dir / "out").size() - 1;  // and the manifest
+  EXPECT_GT(masks, 0u);
+  EXPECT_LT(masks, 30u);
+}
+
+TEST(InputFaults, ATruncatedVideoIsReported) {
+  const test::TempDir dir;
+  for (const std::string name : {"t.mp4", "t.mkv"}) {
+    const std::string video = h264(dir, name, "320x240", 50, name == "t.mp4" ? "-movflags +faststart" : "");
+    fs::resize_file(video, fs::file_size(video) / 2);
+    const test::CommandResult r = test::runCli("segment " + video + " -o " + dir / ("out-" + name) + " -q");
+    test::expectOneLineError(r, "truncated", kRunFailed);
+  }
+}
+
+TEST(InputFaults, ASilentServerFailsAtTheTimeout) {
+  const test::TempDir dir;
+  const test::LocalServer server;
+  const auto start = Clock::now();
+  const test::CommandResult r =
+      test::runCli("segment " + server.url() + " -o " + dir / "out" + " --timeout 1");
+  test::expectOneLineError(r, "cannot open video", kRunFailed);
+  EXPECT_LT(Clock::now() - start, std::chrono::seconds(8));  // the default timeout is 10 s
+}
+
+TEST(InputFaults, AStalledStreamStopsWithinASecondOfSigint) {
+  const test::TempDir dir;
+  const std::string video = h264(dir, "v.mkv", "320x240", 100);
+  std::ifstream in(video, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  bytes.resize(bytes.size() / 2);  // then silence
+  const test::LocalServer server(bytes);
+  const pid_t pid = test::startCli({"segment", server.url(), "-o", dir / "out", "-q", "--timeout", "0"},
+                                   dir / "log.txt");
+  ASSERT_GT(pid, 0);
+  const auto wait_end = Clock::now() + std::chrono::seconds(60);
+  while (!fs::exists(dir / "out/00005.png") && Clock::now() < wait_end) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // it has read all there is
+  const auto signalled = Clock::now();
+  kill(pid, SIGINT);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+#ifdef __SANITIZE_ADDRESS__  // the leak check at exit adds its own time
+  EXPECT_LT(Clock::now() - signalled, std::chrono::seconds(3));
+#else
+  EXPECT_LT(Clock::now() - signalled, std::chrono::seconds(1));
+#endif
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+}
+
+TEST(InputFaults, SpecialFilesAreNamedForWhatTheyAre) {
+  const test::TempDir dir;
+  test::expectOneLineError(test::runCli("segment /dev/null -o " + dir / "out"),
+                           "cannot open video '/dev/null'", kRunFailed);
+  // A FIFO is a stream like any other.
+  ASSERT_EQ(mkfifo((dir / "fifo").c_str(), 0600), 0);
+  const std::string video = h264(dir, "v.mkv", "160x120", 6);
+  std::thread writer([&] { test::runShell("sh -c 'cat " + video + " > " + dir / "fifo" + "'"); });
+  const test::CommandResult r = test::runCli("segment " + dir / "fifo" + " -o " + dir / "out" + " -q");
+  writer.join();
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(dir / "out/00005.png"));
+}
+
+// One input grammar: a frames folder, its sequence folder, and a printf pattern give the same.
+TEST(InputGrammar, PatternsAndSequenceFoldersReadTheSameFrames) {
+  const test::TempDir dir;
+  ASSERT_EQ(test::runCli("synth -o " + dir / "seq" + " --frames 4 --size 96x72").exit_code, 0);
+  const std::string inputs[] = {dir / "seq/frames", dir / "seq", dir / "seq/frames/%05d.png"};
+  for (size_t i = 0; i < 3; ++i) {
+    const test::CommandResult r =
+        test::runCli("segment " + inputs[i] + " -o " + dir / ("out" + std::to_string(i)) + " -q");
+    ASSERT_EQ(r.exit_code, 0) << inputs[i] << "\n" << r.output;
+  }
+  for (const std::string& name : test::filesIn(dir / "seq/frames")) {
+    const cv::Mat first = cv::imread(dir / "out0/" + name, cv::IMREAD_UNCHANGED);
+    for (const char* other : {"out1/", "out2/"}) {
+      EXPECT_EQ(cv::norm(first, cv::imread(dir / other + name, cv::IMREAD_UNCHANGED), cv::NORM_INF), 0)
+          << other << name;
+    }
+  }
+  test::expectOneLineError(test::runCli("segment " + dir / "seq/frames/%05d.jpg -o " + dir / "x"),
+                           "no image matches", kRunFailed);
+}
+
+}  // namespace
+}  // namespace movseg

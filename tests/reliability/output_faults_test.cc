@@ -1,0 +1,199 @@
+// Issue 15's output faults: a full disk (a file-size limit), outputs that would overwrite the
+// input, empty names, a folder holding another run, overlay names and codecs, exit codes.
+#include <signal.h>
+#include <sys/wait.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "io/video_decoder.h"
+#include "reliability/reliability_fixture.h"
+#include "test_support.h"
+
+namespace movseg {
+namespace {
+namespace fs = std::filesystem;
+
+constexpr int kUsage = 2, kRunFailed = 1;
+
+class OutputFaults : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    clip_ = new test::TempDir;
+    const auto run = test::runCli("synth -o " + (*clip_ / "clip") + " --frames 12 --size 160x120");
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+  }
+  static void TearDownTestSuite() { delete clip_; }
+  static std::string frames() { return *clip_ / "clip/frames"; }
+  static test::TempDir* clip_;
+  test::TempDir dir_;
+};
+test::TempDir* OutputFaults::clip_ = nullptr;
+
+// Every line of a JSON Lines file parses; their count.
+int wholeJsonLines(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  int lines = 0;
+  while (std::getline(in, line)) {
+    EXPECT_NO_THROW(nlohmann::json::parse(line)) << "line " << lines << ": " << line;
+    ++lines;
+  }
+  std::ifstream tail(path, std::ios::ate | std::ios::binary);
+  EXPECT_TRUE(fs::file_size(path) == 0 || (tail.seekg(-1, std::ios::end), tail.get() == '\n'));
+  return lines;
+}
+
+bool anyPartFile(const std::string& folder) {
+  for (const auto& entry : fs::recursive_directory_iterator(folder)) {
+    if (entry.path().string().find(".part") != std::string::npos) return true;
+  }
+  return false;
+}
+
+TEST_F(OutputFaults, FullDiskForStatsStopsWithWholeLinesUnderTheFinalName) {
+  const std::string stats = dir_ / "stats.jsonl";
+  const test::CommandResult r = test::runCliWithFileLimit(
+      3000, "segment " + frames() + " -o " + dir_ / "out" + " --stats " + stats + " -q");
+  test::expectOneLineError(r, "stats.jsonl", kRunFailed);
+  ASSERT_TRUE(fs::exists(stats));
+  const int lines = wholeJsonLines(stats);
+  EXPECT_GT(lines, 0);
+  EXPECT_LT(lines, 12);
+  EXPECT_FALSE(anyPartFile(dir_.path()));
+  const nlohmann::json manifest = nlohmann::json::parse(std::ifstream(dir_ / "out/movseg-run.json"));
+  EXPECT_FALSE(manifest.at("finished").get<bool>());
+}
+
+// Debug pictures are the largest images a run writes: the first one passes the limit.
+TEST_F(OutputFaults, FullDiskForPicturesStops) {
+  const test::CommandResult r =
+      test::runCliWithFileLimit(3000, "segment " + frames() + " -o " + dir_ / "out" +
+                                      " --method paper --debug -q");  // pictures over 3 kB
+  test::expectOneLineError(r, ".png", kRunFailed);
+  EXPECT_TRUE(fs::exists(dir_ / "out/00000.png"));
+  EXPECT_FALSE(fs::exists(dir_ / "out/00002.png"));
+  EXPECT_FALSE(anyPartFile(dir_.path()));
+}
+
+TEST_F(OutputFaults, FullDiskForAnOverlayVideoLeavesNoUnplayableFile) {
+  const test::CommandResult r = test::runCliWithFileLimit(
+      8000, "segment " + frames() + " -o " + dir_ / "out" + " --overlay " + dir_ / "o.mp4" + " -q");
+  test::expectOneLineError(r, "o.mp4", kRunFailed);
+  EXPECT_FALSE(fs::exists(dir_ / "o.mp4"));
+  EXPECT_FALSE(anyPartFile(dir_.path()));
+  EXPECT_TRUE(fs::exists(dir_ / "out/00011.png"));  // the masks are complete
+}
+
+TEST_F(OutputFaults, AnOverlayVideoPlaysWithEveryFrameInH264AtTheInputsRate) {
+  const std::string video = dir_ / "x.MP4";  // the extension in any case
+  ASSERT_TRUE(test::ffmpeg("-framerate 12 -i " + frames() + "/%05d.png -c:v libx264 -pix_fmt yuv420p " +
+                           dir_ / "in.mp4"));
+  const test::CommandResult r =
+      test::runCli("segment " + dir_ / "in.mp4" + " -o " + dir_ / "out" + " --overlay " + video + " -q");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const VideoDecoder overlay(video, {});
+  EXPECT_EQ(overlay.expectedFrames(), 12);
+  EXPECT_DOUBLE_EQ(overlay.fps(), 12.0);
+  EXPECT_EQ(test::runShell("ffprobe -v error -show_streams " + video + " | grep -q codec_name=h264"), 0);
+}
+
+TEST_F(OutputFaults, UnknownOverlayExtensionIsRefused) {
+  test::expectOneLineError(
+      test::runCli("segment " + frames() + " -o " + dir_ / "out" + " --overlay " + dir_ / "x.gif"),
+      "x.gif", kUsage);
+  EXPECT_FALSE(fs::exists(dir_ / "x.gif"));
+}
+
+TEST_F(OutputFaults, FeatureDotsCanBeHidden) {
+  for (const std::string run : {"dots", "plain"}) {
+    const std::string hide = run == "plain" ? " --no-feature-dots" : "";
+    ASSERT_EQ(test::runCli("segment " + frames() + " -o " + dir_ / run + " --overlay -q" + hide).exit_code, 0);
+  }
+  const cv::Mat dots = cv::imread(dir_ / "dots/overlay/00003.png");
+  const cv::Mat plain = cv::imread(dir_ / "plain/overlay/00003.png");
+  ASSERT_EQ(dots.size(), plain.size());
+  EXPECT_GT(cv::norm(dots, plain, cv::NORM_L1), 0);
+}
+
+TEST_F(OutputFaults, OutputsInsideTheInputAreRefused) {
+  ASSERT_TRUE(test::ffmpeg("-i " + frames() + "/%05d.png -c:v libx264 -pix_fmt yuv420p " + dir_ / "in.mp4"));
+  const std::string video = dir_ / "in.mp4";
+  const auto size = fs::file_size(video);
+  const std::pair<std::string, std::string> cases[] = {
+      {"segment " + frames() + " -o " + frames(), "-o"},
+      {"segment " + frames() + " -o " + frames() + "/masks", "-o"},
+      {"segment " + frames() + "/ -o " + frames() + "/./masks/", "-o"},
+      {"segment " + (*clip_ / "clip") + " -o " + frames(), "-o"},  // a sequence folder reads frames/
+      {"segment " + video + " -o " + dir_ / "out" + " --overlay " + video, "--overlay"},
+      {"segment " + video + " -o " + dir_ / "out" + " --stats " + video, "--stats"},
+      {"segment " + frames() + "/%05d.png -o " + frames(), "-o"},
+      {"segment " + frames() + " -o ''", "empty"},
+      {"segment " + frames() + " -o " + dir_ / "out" + " --stats ''", "empty"},
+  };
+  for (const auto& [arguments, named] : cases) {
+    SCOPED_TRACE(arguments);
+    test::expectOneLineError(test::runCli(arguments), named, kUsage);
+  }
+  EXPECT_EQ(fs::file_size(video), size);
+  EXPECT_EQ(test::filesIn(frames()).size(), 12u);
+  EXPECT_FALSE(fs::exists(dir_ / "out/00000.png"));
+}
+
+TEST_F(OutputFaults, ARunIntoAUsedFolderIsRefusedUnlessOverwritten) {
+  const std::string run = "segment " + frames() + " -o " + dir_ / "out" + " -q";
+  ASSERT_EQ(test::runCli(run).exit_code, 0);
+  const nlohmann::json manifest = nlohmann::json::parse(std::ifstream(dir_ / "out/movseg-run.json"));
+  EXPECT_EQ(manifest.at("input").get<std::string>(), frames());
+  EXPECT_EQ(manifest.at("frames_done").get<int>(), 12);
+  EXPECT_TRUE(manifest.at("finished").get<bool>());
+  EXPECT_EQ(manifest.at("settings").at("lk_window").get<std::string>(), "11");
+
+  test::expectOneLineError(test::runCli(run + " --max-frames 3"), "--overwrite", kUsage);
+  ASSERT_EQ(test::runCli(run + " --max-frames 3 --overwrite").exit_code, 0);
+  EXPECT_TRUE(fs::exists(dir_ / "out/00002.png"));
+  EXPECT_FALSE(fs::exists(dir_ / "out/00003.png"));  // the earlier run's masks are gone
+
+  // Masks of an unknown run (no manifest, e.g. a run killed before 0.2) are not mixed either.
+  fs::remove(dir_ / "out/movseg-run.json");
+  test::expectOneLineError(test::runCli(run), "numbered masks", kUsage);
+}
+
+TEST_F(OutputFaults, ARunThatCouldNotStartDoesNotClaimItsFolder) {
+  const std::string run = "segment " + frames() + " -o " + dir_ / "out" + " -q";
+  test::expectOneLineError(test::runCli(run + " --stats " + dir_ / "no/such/folder/s.jsonl"),
+                           "s.jsonl", kRunFailed);
+  EXPECT_EQ(test::runCli(run).exit_code, 0);
+}
+
+TEST_F(OutputFaults, ExitCodesSayUsageOrRunFailure) {
+  EXPECT_EQ(test::runCli("segment " + frames() + " -o " + dir_ / "out" + " --frobnicate").exit_code, kUsage);
+  EXPECT_EQ(test::runCli("segment " + frames() + " -o " + dir_ / "out" + " --max-frames 0").exit_code, kUsage);
+  EXPECT_EQ(test::runCli("segment " + frames() + " -o " + dir_ / "out" + " --lambda -1").exit_code, kUsage);
+  EXPECT_EQ(test::runCli("segment").exit_code, kUsage);
+  EXPECT_EQ(test::runCli("segment " + dir_ / "missing.mp4 -o " + dir_ / "out").exit_code, kRunFailed);
+  EXPECT_EQ(test::runCli("segment --help").exit_code, 0);
+}
+
+TEST_F(OutputFaults, AClosedStdoutIsNotADeathBySigpipe) {
+  const std::string rc = dir_ / "rc";
+  test::runShell("(" + std::string(MOVSEG_CLI_PATH) + " segment " + frames() + " -o " + dir_ / "out" +
+                 "; echo $? > " + rc + ") | true");
+  std::ifstream in(rc);
+  int code = -1;
+  in >> code;
+  EXPECT_EQ(code, 0);
+}
+
+TEST_F(OutputFaults, AFileNameWithANewlineKeepsTheErrorOnOneLine) {
+  test::expectOneLineError(test::runCli("segment '" + dir_ / "a\nb.mp4" + "' -o " + dir_ / "out"),
+                           "no such file", kRunFailed);
+}
+
+}  // namespace
+}  // namespace movseg
