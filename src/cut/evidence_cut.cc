@@ -10,33 +10,12 @@
 namespace movseg {
 namespace {
 
-// Edge weights smoothness * exp(-beta |dC|^2) to the right and down, beta = 1 / (2 <|dC|^2>)
-// over the image (GrabCut's normalisation: the term reacts to the image's own contrast).
+// Edge weights smoothness * exp(-beta |dC|^2) to the right and down (squaredColourSteps).
 void contrastWeights(const cv::Mat& bgr, double smoothness, GridEnergy* energy) {
   cv::Mat colour;
   bgr.convertTo(colour, CV_32FC3);
-  energy->right = cv::Mat::zeros(bgr.size(), CV_32F);
-  energy->down = cv::Mat::zeros(bgr.size(), CV_32F);
+  const float beta = squaredColourSteps(colour, energy);
   const int w = bgr.cols, h = bgr.rows;
-  double sum = 0;
-  for (int y = 0; y < h; ++y) {
-    const auto* c = colour.ptr<cv::Vec3f>(y);
-    const auto* below = colour.ptr<cv::Vec3f>(std::min(y + 1, h - 1));
-    float* right = energy->right.ptr<float>(y);
-    float* down = energy->down.ptr<float>(y);
-    for (int x = 0; x < w; ++x) {
-      if (x + 1 < w) {
-        const cv::Vec3f d = c[x] - c[x + 1];
-        sum += right[x] = d.dot(d);
-      }
-      if (y + 1 < h) {
-        const cv::Vec3f d = c[x] - below[x];
-        sum += down[x] = d.dot(d);
-      }
-    }
-  }
-  const double edges = static_cast<double>(w - 1) * h + static_cast<double>(h - 1) * w;
-  const auto beta = static_cast<float>(sum > 0 ? edges / (2 * sum) : 0.0);
   const auto weight = static_cast<float>(smoothness);
   for (int y = 0; y < h; ++y) {
     float* right = energy->right.ptr<float>(y);

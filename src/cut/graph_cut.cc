@@ -48,27 +48,11 @@ cv::Mat geodesicUnaries(const cv::Mat& d_fg, const cv::Mat& d_bg,
 }
 
 // Eq. (11) for the right and the down neighbour of every pixel (0 where there is none), times
-// the weight lambda of eq. (6). |C_i - C_j|^2 is scaled by beta = 1 / (2 <|dC|^2>), GrabCut's
-// normalisation, so the term reacts to the image's own contrast whatever its bit depth or
-// dynamic range.
+// the weight lambda of eq. (6), |C_i - C_j|^2 scaled by GrabCut's beta (squaredColourSteps).
 void pairwiseWeights(const cv::Mat& colour, const cv::Mat& confidence, double weight,
                      GridEnergy* energy) {
-  energy->right = cv::Mat::zeros(colour.size(), CV_32F);
-  energy->down = cv::Mat::zeros(colour.size(), CV_32F);
+  const float beta = squaredColourSteps(colour, energy);
   const int w = colour.cols, h = colour.rows;
-  double sum = 0;
-  for (int y = 0; y < h; ++y) {
-    const auto* c = colour.ptr<cv::Vec3f>(y);
-    const auto* below = colour.ptr<cv::Vec3f>(std::min(y + 1, h - 1));
-    float* right = energy->right.ptr<float>(y);
-    float* down = energy->down.ptr<float>(y);
-    for (int x = 0; x < w; ++x) {
-      if (x + 1 < w) sum += right[x] = static_cast<float>(cv::norm(c[x] - c[x + 1], cv::NORM_L2SQR));
-      if (y + 1 < h) sum += down[x] = static_cast<float>(cv::norm(c[x] - below[x], cv::NORM_L2SQR));
-    }
-  }
-  const long edges = static_cast<long>(w - 1) * h + static_cast<long>(h - 1) * w;
-  const float beta = sum > 0 ? static_cast<float>(edges / (2 * sum)) : 0.f;
   const auto lambda = static_cast<float>(weight);
   for (int y = 0; y < h; ++y) {
     const float* u = confidence.ptr<float>(y);

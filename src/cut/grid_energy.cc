@@ -1,5 +1,7 @@
 #include "cut/grid_energy.h"
 
+#include <algorithm>
+
 #include <opencv2/imgproc.hpp>
 
 namespace movseg {
@@ -142,6 +144,25 @@ cv::Mat labelCoarseToFine(const GridEnergy& energy, const cv::Mat& state, int re
   labels = labelFreePixels(energy, fine_state, solver, &fine_nodes);
   *nodes = coarse_nodes + fine_nodes;
   return labels;
+}
+
+float squaredColourSteps(const cv::Mat& colour, GridEnergy* energy) {
+  energy->right = cv::Mat::zeros(colour.size(), CV_32F);
+  energy->down = cv::Mat::zeros(colour.size(), CV_32F);
+  const int w = colour.cols, h = colour.rows;
+  double sum = 0;
+  for (int y = 0; y < h; ++y) {
+    const auto* c = colour.ptr<cv::Vec3f>(y);
+    const auto* below = colour.ptr<cv::Vec3f>(std::min(y + 1, h - 1));
+    float* right = energy->right.ptr<float>(y);
+    float* down = energy->down.ptr<float>(y);
+    for (int x = 0; x < w; ++x) {
+      if (x + 1 < w) sum += right[x] = static_cast<float>(cv::norm(c[x] - c[x + 1], cv::NORM_L2SQR));
+      if (y + 1 < h) sum += down[x] = static_cast<float>(cv::norm(c[x] - below[x], cv::NORM_L2SQR));
+    }
+  }
+  const long edges = static_cast<long>(w - 1) * h + static_cast<long>(h - 1) * w;
+  return sum > 0 ? static_cast<float>(edges / (2 * sum)) : 0.f;
 }
 
 }  // namespace movseg

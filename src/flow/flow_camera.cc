@@ -1,6 +1,7 @@
 #include "flow/flow_camera.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "motion/estimators.h"
 #include "motion/model.h"
@@ -36,6 +37,39 @@ float lowerQuantile(std::vector<GridSample> samples, double q) {
   return k->texture;
 }
 
+// Residual motion of a point: from where the camera puts it, x, to where the flow does, y.
+float residualOf(const cv::Point2f& x, const cv::Point2f& y, const FlowCamera& camera) {
+  if (camera.epipole) return static_cast<float>(EpipoleEstimator::offLine(x, y, *camera.epipole));
+  return static_cast<float>(std::hypot(y.x - x.x, y.y - x.y));
+}
+
+// Off-plane samples must be at least this many, and this share of the background's, before
+// depth is read from them: a few stray vectors say nothing about the scene. Most of them (the
+// share below) must then agree on one epipole; movers are a minority of the static scene.
+constexpr size_t kMinOffPlane = 20;
+constexpr double kMinOffPlaneShare = 0.1;
+constexpr double kMinEpipoleAgreement = 0.5;
+
+std::optional<cv::Vec3d> findEpipole(const FlowCamera& camera, cv::Size size,
+                                     const RansacOptions& options, cv::RNG& rng) {
+  std::vector<cv::Point2f> x, y;
+  size_t background = 0;
+  for (size_t i = 0; i < camera.at.size(); ++i) {
+    if (!camera.background[i]) continue;
+    ++background;
+    const cv::Point2f on_plane = applyModel(camera.model, camera.at[i]);
+    if (cv::norm(camera.to[i] - on_plane) <= 2 * options.max_error) continue;
+    x.push_back(on_plane);
+    y.push_back(camera.to[i]);
+  }
+  if (x.size() < std::max(kMinOffPlane, static_cast<size_t>(kMinOffPlaneShare * background))) {
+    return std::nullopt;
+  }
+  const auto report = Ransac<EpipoleEstimator>(options).estimate(x, y, size, rng);
+  if (!report.success || report.num_inliers < kMinEpipoleAgreement * x.size()) return std::nullopt;
+  return report.model;
+}
+
 }  // namespace
 
 FlowCamera fitFlowCamera(const cv::Mat& flow, const cv::Mat& texture, const cv::Mat& moving,
@@ -56,6 +90,7 @@ FlowCamera fitFlowCamera(const cv::Mat& flow, const cv::Mat& texture, const cv::
                                      static_cast<size_t>(kMinBackgroundShare * camera.at.size()))) {
     std::fill(camera.background.begin(), camera.background.end(), 1);
   }
+  if (params.static_camera) return camera;  // §4.1: the identity, nothing to fit
   std::vector<cv::Point2f> x, y;
   for (size_t i = 0; i < camera.at.size(); ++i) {
     if (!camera.background[i]) continue;
@@ -69,12 +104,13 @@ FlowCamera fitFlowCamera(const cv::Mat& flow, const cv::Mat& texture, const cv::
   const auto report = Ransac<HomographyEstimator>(options).estimate(x, y, flow.size(), rng);
   camera.fallback = !report.success;
   if (report.success) camera.model = report.model;
+  if (report.success && params.parallax) camera.epipole = findEpipole(camera, flow.size(), options, rng);
   return camera;
 }
 
-void residualMotion(const cv::Mat& flow, const cv::Matx33d& model, cv::Mat* residual) {
+void residualMotion(const cv::Mat& flow, const FlowCamera& camera, cv::Mat* residual) {
   residual->create(flow.size(), CV_32F);
-  const cv::Matx33f m(model);
+  const cv::Matx33f m(camera.model);
   for (int y = 0; y < flow.rows; ++y) {
     const auto* f = flow.ptr<cv::Vec2f>(y);
     float* r = residual->ptr<float>(y);
@@ -82,9 +118,9 @@ void residualMotion(const cv::Mat& flow, const cv::Matx33d& model, cv::Mat* resi
     for (int x = 0; x < flow.cols; ++x) {
       const float fx = static_cast<float>(x);
       const float w = m(2, 0) * fx + m(2, 1) * fy + m(2, 2);
-      const float dx = f[x][0] - ((m(0, 0) * fx + m(0, 1) * fy + m(0, 2)) / w - fx);
-      const float dy = f[x][1] - ((m(1, 0) * fx + m(1, 1) * fy + m(1, 2)) / w - fy);
-      r[x] = std::sqrt(dx * dx + dy * dy);
+      const cv::Point2f on_plane((m(0, 0) * fx + m(0, 1) * fy + m(0, 2)) / w,
+                                 (m(1, 0) * fx + m(1, 1) * fy + m(1, 2)) / w);
+      r[x] = residualOf(on_plane, cv::Point2f(fx + f[x][0], fy + f[x][1]), camera);
     }
   }
 }
@@ -116,7 +152,7 @@ void cameraMap(const cv::Matx33d& model, cv::Size size, cv::Mat* map) {
 std::vector<float> residualAtSamples(const FlowCamera& camera) {
   std::vector<float> residual(camera.at.size());
   for (size_t i = 0; i < camera.at.size(); ++i) {
-    residual[i] = static_cast<float>(cv::norm(applyModel(camera.model, camera.at[i]) - camera.to[i]));
+    residual[i] = residualOf(applyModel(camera.model, camera.at[i]), camera.to[i], camera);
   }
   return residual;
 }

@@ -3,6 +3,7 @@
 // leaves unexplained — the residual motion — at every pixel.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -17,17 +18,23 @@ struct FlowCamera {
   std::vector<cv::Point2f> to;             // where the flow takes them in the previous one,
   std::vector<char> background;            // and whether each was believed static
   bool fallback = false;                   // too few samples or no fit: identity
+  // Plane + parallax: when the static scene beyond the model's plane shows depth, the epipole
+  // (homogeneous, previous frame) that its residual motion points along.
+  std::optional<cv::Vec3d> epipole;
 };
 
 // Samples `flow` (CV_32FC2, current -> previous) every `step` pixels where `texture` (CV_32F,
 // e.g. the smaller eigenvalue of the structure tensor) is above its lower `texture_quantile`
 // among the samples — flat pixels carry no flow information — and fits a homography to those
 // not marked in `moving` (CV_8U, above 127; may be empty), unless that would leave too few.
+// With `params.static_camera` the model stays the identity. With `params.parallax`, then the epipole, when enough of those samples are off the plane
+// (more than twice the inlier distance) and most of them agree on one.
 FlowCamera fitFlowCamera(const cv::Mat& flow, const cv::Mat& texture, const cv::Mat& moving,
                          const Params& params, cv::RNG& rng);
 
-// |flow(p) - (model(p) - p)| at every pixel (CV_32F): the motion the camera does not explain.
-void residualMotion(const cv::Mat& flow, const cv::Matx33d& model, cv::Mat* residual);
+// The motion the camera does not explain at every pixel (CV_32F): |p + flow(p) - model(p)|,
+// or with an epipole only its part across the epipolar line through model(p).
+void residualMotion(const cv::Mat& flow, const FlowCamera& camera, cv::Mat* residual);
 
 // Where each pixel of the current frame came from in the previous one (CV_32FC2, for
 // cv::remap): p + flow(p) by the flow, model(p) by the camera.

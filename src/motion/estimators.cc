@@ -74,4 +74,58 @@ void HomographyEstimator::residuals(const std::vector<cv::Point2f>& x,
   squaredTransferErrors(x, y, model, residuals);
 }
 
+namespace {
+
+// The line through x and y, scaled so that its dot product with (u, v, 1) is the distance of
+// the point (u, v) from it; zero when x and y coincide.
+cv::Vec3d lineThrough(const cv::Point2f& x, const cv::Point2f& y) {
+  const cv::Vec3d line = cv::Vec3d(x.x, x.y, 1).cross(cv::Vec3d(y.x, y.y, 1));
+  const double norm = std::hypot(line[0], line[1]);
+  return norm > 1e-9 ? line / norm : cv::Vec3d();
+}
+
+}  // namespace
+
+bool EpipoleEstimator::estimate(const std::vector<cv::Point2f>& x,
+                                const std::vector<cv::Point2f>& y, Model* model) {
+  if (x.size() == 2) {  // minimal: where the two lines meet (at infinity when parallel)
+    const cv::Vec3d e = lineThrough(x[0], y[0]).cross(lineThrough(x[1], y[1]));
+    if (cv::norm(e) < 1e-9) return false;
+    *model = e / cv::norm(e);
+    return true;
+  }
+  // Least squares: the unit e that lines' dot products with are smallest, the eigenvector of
+  // the smallest eigenvalue of sum(l l^T).
+  cv::Matx33d scatter = cv::Matx33d::zeros();
+  for (size_t i = 0; i < x.size(); ++i) {
+    const cv::Vec3d l = lineThrough(x[i], y[i]);
+    scatter += l * l.t();
+  }
+  cv::Mat values, vectors;
+  if (!cv::eigen(cv::Mat(scatter), values, vectors)) return false;
+  *model = cv::Vec3d(vectors.at<double>(2, 0), vectors.at<double>(2, 1), vectors.at<double>(2, 2));
+  return true;
+}
+
+double EpipoleEstimator::offLine(const cv::Point2f& x, const cv::Point2f& y,
+                                 const Model& epipole) {
+  // The direction from the epipole to x, x * e_w - (e_x, e_y), defined at infinity too.
+  const double dx = x.x * epipole[2] - epipole[0];
+  const double dy = x.y * epipole[2] - epipole[1];
+  const double length = std::hypot(dx, dy);
+  const double rx = y.x - x.x, ry = y.y - x.y;
+  if (length < 1e-12) return std::hypot(rx, ry);  // at the epipole the direction is undefined
+  return std::abs(rx * dy - ry * dx) / length;
+}
+
+void EpipoleEstimator::residuals(const std::vector<cv::Point2f>& x,
+                                 const std::vector<cv::Point2f>& y, const Model& model,
+                                 std::vector<double>* residuals) {
+  residuals->resize(x.size());
+  for (size_t i = 0; i < x.size(); ++i) {
+    const double off = offLine(x[i], y[i], model);
+    (*residuals)[i] = off * off;
+  }
+}
+
 }  // namespace movseg

@@ -31,4 +31,21 @@ struct HomographyEstimator {
                         const Model& model, std::vector<double>* residuals);
 };
 
+// The epipole of a static 3-D scene after its dominant plane is removed (plane + parallax):
+// x is where the plane's homography puts a point, y where it really is; for a static point the
+// two lie on one line with the epipole (homogeneous, so that a camera translating sideways puts
+// it at infinity). The residual is the squared distance of y from the line through x and the
+// epipole, the part of the parallax no depth can explain. Degenerate for a pair of parallel
+// displacements on one line, or when x and y coincide.
+struct EpipoleEstimator {
+  using Model = cv::Vec3d;
+  static constexpr int kMinNumSamples = 2;
+  static bool estimate(const std::vector<cv::Point2f>& x, const std::vector<cv::Point2f>& y,
+                       Model* model);
+  static void residuals(const std::vector<cv::Point2f>& x, const std::vector<cv::Point2f>& y,
+                        const Model& model, std::vector<double>* residuals);
+  // The same for one point: |y - x| across the direction from the epipole to x.
+  static double offLine(const cv::Point2f& x, const cv::Point2f& y, const Model& epipole);
+};
+
 }  // namespace movseg

@@ -28,6 +28,7 @@ struct DenseAnalysis : Analysis {
   cv::Mat texture;  // smaller eigenvalue of the structure tensor
   cv::Mat flow;     // to the previous frame; empty on a first frame
   double scale = 1;  // bgr = the frame scaled by this
+  cv::Size input_size;
   double prepare_ms = 0, flow_ms = 0;
 };
 
@@ -74,6 +75,7 @@ class DensePipeline : public Pipeline {
     Clock::time_point start = Clock::now();
     const cv::Size size = scaledSize(bgr.size(), params_.segmentation_width);
     a.scale = static_cast<double>(size.width) / bgr.cols;
+    a.input_size = bgr.size();
     downscale(bgr, size, &halved_, &a.bgr);
     cv::cvtColor(a.bgr, a.grey, cv::COLOR_BGR2GRAY);
     cv::cornerMinEigenVal(a.grey, a.texture, 5);
@@ -90,14 +92,19 @@ class DensePipeline : public Pipeline {
     diag.prepare_ms = a.prepare_ms;
     diag.motion_ms = a.flow_ms;
     const Remember remember{a, &previous_};
+    has_compensated_ = false;
+    input_size_ = a.input_size;
     if (a.first_frame || a.flow.empty()) return forget(a.bgr.size());
     Clock::time_point start = Clock::now();
     cv::Mat carried, evidence;
     flowMap(a.flow, &flow_map_);
     if (!mask_.empty()) carryMask(mask_, flow_map_, &carried);
     const FlowCamera camera = fitFlowCamera(a.flow, a.texture, carried, params_, rng_);
-    residualMotion(a.flow, camera.model, &residual_);
+    residualMotion(a.flow, camera, &residual_);
     cameraMap(camera.model, a.grey.size(), &camera_map_);
+    cv::remap(previous_.bgr, compensated_, camera_map_, cv::noArray(), cv::INTER_LINEAR,
+              cv::BORDER_CONSTANT);
+    has_compensated_ = true;
     diag.motion_ms += millisecondsSince(start);
     describe(camera, a.scale, &diag);
 
@@ -131,9 +138,17 @@ class DensePipeline : public Pipeline {
     return mask_;
   }
 
-  void reset() override { flow_.reset(); }
+  void reset() override {
+    flow_.reset();
+    has_compensated_ = false;
+  }
 
-  cv::Mat compensatedPreviousFrame() const override { return cv::Mat(); }
+  cv::Mat compensatedPreviousFrame() const override {
+    if (!has_compensated_) return cv::Mat();
+    cv::Mat full;
+    cv::resize(compensated_, full, input_size_, 0, 0, cv::INTER_LINEAR);
+    return full;
+  }
 
  private:
   // A stream's first pair, or the first after a scene cut: no mask to carry, no colours known.
@@ -151,6 +166,7 @@ class DensePipeline : public Pipeline {
     diag->model_is_affine = isAffine(diag->model);
     diag->matches = static_cast<int>(camera.at.size());
     diag->motion_fallback = camera.fallback;
+    diag->parallax = camera.epipole.has_value();
   }
 
   Params params_;
@@ -162,6 +178,9 @@ class DensePipeline : public Pipeline {
   cv::Mat flow_map_, camera_map_;
   PhotometricCheck photometric_;
   PreviousFrame previous_;
+  cv::Mat compensated_;  // previous_.bgr of the pair brought to the current frame by the camera
+  bool has_compensated_ = false;
+  cv::Size input_size_;
   cv::Mat halved_;  // scratch of downscale()
 };
 

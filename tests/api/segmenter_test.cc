@@ -30,9 +30,16 @@ test::FramePair movingPair() {
   return test::makePair(spec);
 }
 
+// The paper's pipeline, whose seeds, matches and stage pictures these tests read.
+Params paper() {
+  Params params;
+  params.method = Method::kPaper;
+  return params;
+}
+
 TEST(Segmenter, FirstFrameIsEmptyThenTheObjectIsFound) {
   const test::FramePair pair = movingPair();
-  Segmenter segmenter;
+  Segmenter segmenter(paper());
   const Result first = segmenter.process(pair.prev);
   expectBinaryMaskOfSize(first, pair.prev.size());
   EXPECT_TRUE(first.diagnostics.first_frame);
@@ -55,7 +62,7 @@ TEST(Segmenter, ReportsTheCameraModelInFullResolutionPixels) {
   spec.camera = test::similarityAboutCentre(spec.size, 1, 1.0, {8, -4});
   spec.object_fraction = 0.1;
   const test::FramePair pair = test::makePair(spec);
-  Segmenter segmenter;
+  Segmenter segmenter(paper());
   segmenter.process(pair.prev);
   const Result r = segmenter.process(pair.cur);
   EXPECT_TRUE(r.diagnostics.model_is_affine);
@@ -66,7 +73,7 @@ TEST(Segmenter, StaticCameraModeSkipsAlignment) {
   test::PairSpec spec;
   spec.object_fraction = 0.15;
   const test::FramePair pair = test::makePair(spec);  // identity camera
-  Params params;
+  Params params = paper();
   params.static_camera = true;
   Segmenter segmenter(params);
   segmenter.process(pair.prev);
@@ -78,7 +85,7 @@ TEST(Segmenter, StaticCameraModeSkipsAlignment) {
 
 TEST(Segmenter, DebugPicturesWhenAsked) {
   const test::FramePair pair = movingPair();
-  Params params;
+  Params params = paper();
   params.debug_images = true;
   Segmenter segmenter(params);
   segmenter.process(pair.prev);
@@ -113,7 +120,7 @@ TEST(Segmenter, FramesBeyondTheWarpsLimitAreRefusedUpFront) {
 // Whatever OpenCV throws leaves as std::runtime_error with its one-line reason: here the warp
 // of a 40000-wide previous frame at full resolution.
 TEST(Segmenter, OpenCvFailuresBecomeRuntimeErrors) {
-  Segmenter segmenter;
+  Segmenter segmenter(paper());  // it warps the full-resolution frame
   const cv::Mat wide(8, 40000, CV_8UC3, cv::Scalar(10, 20, 30));
   segmenter.process(wide);
   segmenter.process(wide);

@@ -59,9 +59,14 @@ TEST(SegmentCli, WritesOneMaskPerFrameAndStatsLines) {
 TEST(SegmentCli, DebugWritesEachStagesPictures) {
   const test::TempDir dir;
   const std::string frames = synthClip(dir, 3);
-  ASSERT_EQ(test::runCli("segment " + frames + " -o " + dir / "out" + " --debug -q").exit_code, 0);
+  ASSERT_EQ(test::runCli("segment " + frames + " -o " + dir / "paper" + " --method paper --debug -q")
+                .exit_code, 0);
   for (const char* stage : {"matches", "difference", "features", "features_refined", "mask"}) {
-    EXPECT_TRUE(fs::exists(dir / "out/debug/" + stage + "/00002.png")) << stage;
+    EXPECT_TRUE(fs::exists(dir / "paper/debug/" + stage + "/00002.png")) << stage;
+  }
+  ASSERT_EQ(test::runCli("segment " + frames + " -o " + dir / "dense" + " --debug -q").exit_code, 0);
+  for (const char* stage : {"residual", "confirmation", "mask"}) {
+    EXPECT_TRUE(fs::exists(dir / "dense/debug/" + stage + "/00002.png")) << stage;
   }
 }
 

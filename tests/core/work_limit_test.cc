@@ -17,6 +17,7 @@ namespace {
 // densest features, the widest windows, the most hypotheses and rounds, the whole-image cut.
 Params costliest() {
   Params p;
+  p.method = Method::kPaper;  // the method with the most stages; the tests switch it
   p.alignment_width = 0;
   p.segmentation_width = 0;
   p.max_corners = 100000;

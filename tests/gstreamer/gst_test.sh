@@ -49,7 +49,7 @@ inspect() {
 same_masks_as_segment() {
   "$cli" synth -o "$work/clip" --frames 10 --size 160x120 >/dev/null
   local options=("" "motion-model=homography lk-window=15 method=paper")
-  local cli_options=("" "--motion-model homography --lk-window 15")
+  local cli_options=("" "--motion-model homography --lk-window 15 --method paper")
   for i in 0 1; do
     "$cli" segment "$work/clip/frames" -o "$work/cli$i" -q ${cli_options[$i]}
     mkdir -p "$work/gst$i"

@@ -1,6 +1,7 @@
 // The RANSAC loop of motion/ransac.h and its parts: the estimators, the spread sampler and the
 // coverage support measure, each against known answers.
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -208,6 +209,41 @@ TEST(Ransac, ANewEstimatorPlugsIntoTheSameLoop) {
   EXPECT_NEAR(report.model.x, 7, 1e-3);
   EXPECT_NEAR(report.model.y, -3, 1e-3);
   EXPECT_EQ(report.inlier_mask, data.inlier);
+}
+
+// Plane + parallax: static points are displaced along the lines through the epipole (by a
+// depth-dependent amount, outward or inward), movers across them.
+TEST(Estimators, EpipoleFromParallaxThroughTheLoopLeavesOutTheMovers) {
+  const cv::Vec3d epipole(200, 90, 1);
+  cv::RNG rng(3);
+  std::vector<cv::Point2f> x = spreadPoints(120, 21), y;
+  std::vector<char> is_static;
+  for (const cv::Point2f& p : x) {
+    const cv::Point2f away = p - cv::Point2f(200, 90);
+    const bool mover = y.size() % 4 == 0;  // a quarter move sideways to their line
+    const float depth = rng.uniform(0.02f, 0.1f) * (rng.uniform(0, 2) ? 1.f : -1.f);
+    const cv::Point2f across = cv::Point2f(-away.y, away.x) * (3 / std::hypot(away.x, away.y));
+    y.push_back(mover ? p + across : p + away * depth);
+    is_static.push_back(!mover);
+  }
+  const auto report = Ransac<EpipoleEstimator>(RansacOptions()).estimate(x, y, kImage, rng);
+  ASSERT_TRUE(report.success);
+  EXPECT_NEAR(report.model[0] / report.model[2], 200, 0.5);
+  EXPECT_NEAR(report.model[1] / report.model[2], 90, 0.5);
+  EXPECT_EQ(report.inlier_mask, is_static);
+  EXPECT_NEAR(EpipoleEstimator::offLine({100, 90}, {90, 90}, epipole), 0, 1e-9);  // along
+  EXPECT_NEAR(EpipoleEstimator::offLine({100, 90}, {100, 84}, epipole), 6, 1e-9);  // across
+}
+
+// A camera translating sideways puts the epipole at infinity: parallel displacements.
+TEST(Estimators, EpipoleAtInfinityForParallelDisplacements) {
+  const std::vector<cv::Point2f> x{{10, 20}, {200, 150}}, y{{14, 20}, {201, 150}};
+  cv::Vec3d e;
+  ASSERT_TRUE(EpipoleEstimator::estimate(x, y, &e));
+  EXPECT_NEAR(e[2], 0, 1e-9);
+  EXPECT_NEAR(EpipoleEstimator::offLine({50, 60}, {47, 60}, e), 0, 1e-9);
+  EXPECT_NEAR(EpipoleEstimator::offLine({50, 60}, {50, 62}, e), 2, 1e-9);
+  EXPECT_FALSE(EpipoleEstimator::estimate({{0, 0}, {10, 0}}, {{5, 0}, {20, 0}}, &e));  // one line
 }
 
 TEST(RansacOptions, CheckRejectsEachOptionOutOfRange) {

@@ -2,31 +2,20 @@
 // moving objects (mean IoU over a short clip; README's table has the long runs).
 #include <gtest/gtest.h>
 
-#include "movseg/segmenter.h"
-#include "synth/synth.h"
+#include "accuracy_fixture.h"
 
 namespace movseg {
 namespace {
 
 double meanIou(SynthCamera camera, cv::Size size) {
-  SynthOptions options;
-  options.camera = camera;
-  options.size = size;
-  options.frames = 25;
-  options.seed = 11;
-  const SynthSequence sequence(options);
-  Segmenter segmenter;
-  double sum = 0;
-  int counted = 0;
-  for (int t = 0; t < sequence.size(); ++t) {
-    const SynthFrame f = sequence.frame(t);
-    const cv::Mat mask = segmenter.process(f.frame).mask;
-    if (t == 0) continue;  // no previous frame, no motion
-    const double uni = cv::countNonZero(mask | f.mask);
-    sum += uni > 0 ? cv::countNonZero(mask & f.mask) / uni : 1.0;
-    ++counted;
-  }
-  return sum / counted;
+  SynthOptions clip;
+  clip.camera = camera;
+  clip.size = size;
+  clip.frames = 25;
+  clip.seed = 11;
+  Params params;
+  params.method = Method::kPaper;
+  return test::meanIou(clip, params);
 }
 
 class SyntheticAccuracy : public ::testing::TestWithParam<SynthCamera> {};

@@ -18,6 +18,7 @@ namespace {
 // FNV-1a over every mask of the sequence, each packed to bits (MSB first, row-major).
 std::uint64_t maskChecksum(const std::string& frames_dir) {
   Params params;  // the paper's method with its default settings, but for the exact cut
+  params.method = Method::kPaper;
   params.cut_refine = 0;
   Segmenter segmenter(params);
   std::uint64_t hash = 0xcbf29ce484222325ull;

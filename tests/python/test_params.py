@@ -71,7 +71,7 @@ def test_bad_values_raise_value_error():
 
 
 def test_choices_are_names():
-    assert movseg.Params().method == "paper"
+    assert movseg.Params().method == "dense"
     with pytest.raises(ValueError, match="one of paper, diff"):
         movseg.Params(method="fast")
 

@@ -48,7 +48,7 @@ def test_grey_frames_give_masks_of_their_size(frames):
 
 
 def test_result_arrays_and_diagnostics(frames):
-    first, second = segment(frames[:2])
+    first, second = segment(frames[:2], movseg.Params(method="paper"))  # it has features
     assert first.diagnostics.first_frame and not first.mask.any()
     d = second.diagnostics
     assert d.model.shape == (3, 3) and d.model.dtype == np.float64

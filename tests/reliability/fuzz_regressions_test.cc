@@ -43,6 +43,7 @@ TEST(FuzzRegressions, SegmentationScaleBelowAlignmentScaleKeepsSeedsInside) {
   spec.object_fraction = 0.15;
   const test::FramePair pair = test::makePair(spec);
   Params params;
+  params.method = Method::kPaper;  // its seeds
   params.segmentation_width = 64;  // alignment at 320
   Segmenter segmenter(params);
   segmenter.process(pair.prev);

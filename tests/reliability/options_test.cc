@@ -86,7 +86,7 @@ TEST(Options, SetBooleansInAnyCaseTakeEffect) {
     const std::string stats = dir / "stats.jsonl";
     const test::CommandResult run =
         test::runCli("segment " + (dir / "clip/frames") + " -o " + (dir / "out") +
-                     " -q --overwrite --stats " + stats + " --set static_camera=" + value);
+                     " -q --overwrite --method paper --stats " + stats + " --set static_camera=" + value);
     EXPECT_EQ(run.exit_code, 0) << value << "\n" << run.output;
     std::ifstream in(stats);
     std::string line;

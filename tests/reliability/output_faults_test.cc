@@ -73,7 +73,8 @@ TEST_F(OutputFaults, FullDiskForStatsStopsWithWholeLinesUnderTheFinalName) {
 // Debug pictures are the largest images a run writes: the first one passes the limit.
 TEST_F(OutputFaults, FullDiskForPicturesStops) {
   const test::CommandResult r =
-      test::runCliWithFileLimit(3000, "segment " + frames() + " -o " + dir_ / "out" + " --debug -q");
+      test::runCliWithFileLimit(3000, "segment " + frames() + " -o " + dir_ / "out" +
+                                      " --method paper --debug -q");  // pictures over 3 kB
   test::expectOneLineError(r, ".png", kRunFailed);
   EXPECT_TRUE(fs::exists(dir_ / "out/00000.png"));
   EXPECT_FALSE(fs::exists(dir_ / "out/00002.png"));

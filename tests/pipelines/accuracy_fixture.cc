@@ -1,0 +1,23 @@
+#include "accuracy_fixture.h"
+
+#include "movseg/segmenter.h"
+
+namespace movseg::test {
+
+double meanIou(const SynthOptions& clip, const Params& params) {
+  const SynthSequence sequence(clip);
+  Segmenter segmenter(params);
+  double sum = 0;
+  int counted = 0;
+  for (int t = 0; t < sequence.size(); ++t) {
+    const SynthFrame f = sequence.frame(t);
+    const cv::Mat mask = segmenter.process(f.frame).mask;
+    if (t == 0) continue;  // no previous frame, no motion
+    const double uni = cv::countNonZero(mask | f.mask);
+    sum += uni > 0 ? cv::countNonZero(mask & f.mask) / uni : 1.0;
+    ++counted;
+  }
+  return sum / counted;
+}
+
+}  // namespace movseg::test

@@ -1,0 +1,13 @@
+// Accuracy of a method on a synthetic clip, for the end-to-end tests of each pipeline.
+#pragma once
+
+#include "movseg/params.h"
+#include "synth/synth.h"
+
+namespace movseg::test {
+
+// Mean IoU of `params`' masks against the clip's truth, over the frames after the first
+// (a frame with nothing to find and nothing found counts 1).
+double meanIou(const SynthOptions& clip, const Params& params);
+
+}  // namespace movseg::test
