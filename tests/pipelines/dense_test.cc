@@ -77,8 +77,12 @@ TEST(Dense, AMoverThatLeavesTheViewLeavesTheMask) {
       gone_at = t;
     }
     const int found = cv::countNonZero(segmenter.process(frame).mask);
-    if (t == 8) EXPECT_GT(found, 400) << "the moving square is found";
-    if (gone_at >= 0 && t >= gone_at + 3) EXPECT_EQ(found, 0) << "frame " << t;
+    if (t == 8) {
+      EXPECT_GT(found, 400) << "the moving square is found";
+    }
+    if (gone_at >= 0 && t >= gone_at + 3) {
+      EXPECT_EQ(found, 0) << "frame " << t;
+    }
   }
   EXPECT_GT(gone_at, 0);
 }
