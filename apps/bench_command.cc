@@ -1,4 +1,4 @@
-// movseg bench DATA [--methods paper,diff,mog2,mog2-comp] [--size WxH] [--json FILE] [--html FILE]
+// movseg bench DATA [--methods dense,paper,diff,mog2,mog2-comp] [--size WxH] [--json FILE] [--html FILE]
 // Every method on every sequence of DATA: accuracy against the ground truth and speed, in one
 // table (the README's tables come from here).
 #include <algorithm>
