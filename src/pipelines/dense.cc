@@ -129,7 +129,14 @@ class DensePipeline : public Pipeline {
     start = Clock::now();
     mask_ = cutEvidence(unary, a.bgr, params_.smoothness, &diag.cut_nodes);
     diag.cut_ms = millisecondsSince(start);
-    debug.put("residual", [&] { return residual_; });
+    debug.put("residual", [&] {  // mid-grey: as large as the background's residual in this pair
+      cv::Mat picture;
+      residual_.convertTo(picture, CV_8U, 128.0 / scale);
+      return picture;
+    });
+    debug.put("carried", [&] {  // the previous mask brought here by the flow: the memory
+      return carried.empty() ? cv::Mat(cv::Mat::zeros(a.grey.size(), CV_8U)) : carried;
+    });
     debug.put("confirmation", [&] {
       cv::Mat picture;
       confirmation_.convertTo(picture, CV_8U, 255);
