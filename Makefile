@@ -7,7 +7,7 @@ CMAKE_FLAGS ?=
 ASAN_DIR ?= build-asan
 FUZZ_DIR ?= build-fuzz
 TSAN_DIR ?= build-tsan
-FUZZ_SECONDS ?= 60
+FUZZ_SECONDS ?= 30
 # `make deb` builds the Debian package in a build configured for /usr.
 DEB_DIR ?= build-deb
 # -O1: sanitized code stays fast and its stack traces readable. No -DNDEBUG: asserts are on.
