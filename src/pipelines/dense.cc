@@ -145,10 +145,8 @@ class DensePipeline : public Pipeline {
     return mask_;
   }
 
-  void reset() override {
-    flow_.reset();
-    has_compensated_ = false;
-  }
+  // Phase 1's state only: reset() runs with analyse(), beside segment() on another thread.
+  void reset() override { flow_.reset(); }
 
   cv::Mat compensatedPreviousFrame() const override {
     if (!has_compensated_) return cv::Mat();
