@@ -138,10 +138,7 @@ class DensePipeline : public Pipeline {
     return mask_;
   }
 
-  void reset() override {
-    flow_.reset();
-    has_compensated_ = false;
-  }
+  void reset() override { flow_.reset(); }
 
   cv::Mat compensatedPreviousFrame() const override {
     if (!has_compensated_) return cv::Mat();
