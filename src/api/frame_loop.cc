@@ -101,6 +101,7 @@ void FrameLoop::reset() {
 }
 
 cv::Mat FrameLoop::compensatedPreviousFrame() const {
+  if (size_.empty()) return cv::Mat();  // no stream since reset(): nothing to warp
   return openCvChecked([&] { return pipeline_->compensatedPreviousFrame(); });
 }
 

@@ -50,7 +50,7 @@ class FrameLoop {
 
   const Params& params() const { return params_; }
 
-  // The pipeline's compensatedPreviousFrame(); throws as analyse() does.
+  // The pipeline's compensatedPreviousFrame(), empty after reset(); throws as analyse() does.
   cv::Mat compensatedPreviousFrame() const;
 
  private:

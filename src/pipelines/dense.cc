@@ -145,7 +145,6 @@ class DensePipeline : public Pipeline {
     return mask_;
   }
 
-  // Phase 1's state only: reset() runs with analyse(), beside segment() on another thread.
   void reset() override { flow_.reset(); }
 
   cv::Mat compensatedPreviousFrame() const override {

@@ -58,7 +58,9 @@ class Pipeline {
   // `debug`. A first-frame analysis makes it forget what it remembers of earlier frames.
   virtual cv::Mat segment(const Analysis& analysis, const DebugSink& debug, Result* result) = 0;
 
-  // Forgets phase 1's stream; phase 2 forgets at the next first-frame analysis.
+  // Forgets phase 1's stream; phase 2 forgets at the next first-frame analysis. It runs with
+  // phase 1, possibly while phase 2 segments the previous frame on another thread
+  // (StreamSegmenter), so it must not touch phase 2's state.
   virtual void reset() = 0;
 
   // The previous frame warped into the last analysed frame's coordinates; empty when there is

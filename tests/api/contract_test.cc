@@ -99,6 +99,10 @@ TEST_P(Contract, ResetAndClearMakeTheNextFrameAFirstFrame) {
   }
   segmenter.reset();
   subtractor->clear();
+  EXPECT_TRUE(segmenter.compensatedPreviousFrame().empty());
+  cv::Mat background;
+  subtractor->getBackgroundImage(background);
+  EXPECT_TRUE(background.empty());
   const Result r = segmenter.process(frames[2]);
   EXPECT_TRUE(r.diagnostics.first_frame);
   EXPECT_FALSE(r.diagnostics.reset);
