@@ -5,24 +5,20 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "core/quantile.h"
+
 namespace movseg {
 namespace {
 
 // A residual scale below this (pixels) is below what the flow resolves.
 constexpr float kMinResidualScale = 0.1f;
 
-float quantile(std::vector<float>& values, double q) {
-  const auto k = values.begin() + static_cast<std::ptrdiff_t>(q * (values.size() - 1));
-  std::nth_element(values.begin(), k, values.end());
-  return *k;
-}
-
 }  // namespace
 
 float residualScale(std::vector<float> sample_residuals, const Params& params) {
   if (sample_residuals.empty()) return kMinResidualScale;
-  const float upper = quantile(sample_residuals, params.evidence_quantile);
-  const float median = quantile(sample_residuals, 0.5);
+  const float upper = quantile(&sample_residuals, params.evidence_quantile);
+  const float median = quantile(&sample_residuals, 0.5);
   return std::max({upper, static_cast<float>(params.evidence_median_factor) * median,
                    kMinResidualScale});
 }

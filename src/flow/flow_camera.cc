@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/quantile.h"
 #include "motion/estimators.h"
 #include "motion/model.h"
 #include "motion/ransac.h"
@@ -29,12 +30,12 @@ std::vector<GridSample> gridSamples(const cv::Mat& texture, int step) {
   return samples;
 }
 
-float lowerQuantile(std::vector<GridSample> samples, double q) {
+float textureQuantile(const std::vector<GridSample>& samples, double q) {
   if (samples.empty()) return 0.f;
-  const auto k = samples.begin() + static_cast<std::ptrdiff_t>(q * (samples.size() - 1));
-  std::nth_element(samples.begin(), k, samples.end(),
-                   [](const GridSample& a, const GridSample& b) { return a.texture < b.texture; });
-  return k->texture;
+  std::vector<float> textures;
+  textures.reserve(samples.size());
+  for (const GridSample& s : samples) textures.push_back(s.texture);
+  return quantile(&textures, q);
 }
 
 // Residual motion of a point: from where the camera puts it, x, to where the flow does, y.
@@ -76,7 +77,7 @@ FlowCamera fitFlowCamera(const cv::Mat& flow, const cv::Mat& texture, const cv::
                          const Params& params, cv::RNG& rng) {
   FlowCamera camera;
   const std::vector<GridSample> grid = gridSamples(texture, params.flow_sample_step);
-  const float flat = lowerQuantile(grid, params.flow_texture_quantile);
+  const float flat = textureQuantile(grid, params.flow_texture_quantile);
   size_t background = 0;
   for (const GridSample& s : grid) {
     if (s.texture < flat) continue;
@@ -108,19 +109,17 @@ FlowCamera fitFlowCamera(const cv::Mat& flow, const cv::Mat& texture, const cv::
   return camera;
 }
 
-void residualMotion(const cv::Mat& flow, const FlowCamera& camera, cv::Mat* residual) {
+void residualMotion(const cv::Mat& flow, const cv::Mat& camera_map, const FlowCamera& camera,
+                    cv::Mat* residual) {
   residual->create(flow.size(), CV_32F);
-  const cv::Matx33f m(camera.model);
   for (int y = 0; y < flow.rows; ++y) {
     const auto* f = flow.ptr<cv::Vec2f>(y);
+    const auto* on_plane = camera_map.ptr<cv::Point2f>(y);
     float* r = residual->ptr<float>(y);
     const float fy = static_cast<float>(y);
     for (int x = 0; x < flow.cols; ++x) {
       const float fx = static_cast<float>(x);
-      const float w = m(2, 0) * fx + m(2, 1) * fy + m(2, 2);
-      const cv::Point2f on_plane((m(0, 0) * fx + m(0, 1) * fy + m(0, 2)) / w,
-                                 (m(1, 0) * fx + m(1, 1) * fy + m(1, 2)) / w);
-      r[x] = residualOf(on_plane, cv::Point2f(fx + f[x][0], fy + f[x][1]), camera);
+      r[x] = residualOf(on_plane[x], cv::Point2f(fx + f[x][0], fy + f[x][1]), camera);
     }
   }
 }

@@ -33,8 +33,10 @@ FlowCamera fitFlowCamera(const cv::Mat& flow, const cv::Mat& texture, const cv::
                          const Params& params, cv::RNG& rng);
 
 // The motion the camera does not explain at every pixel (CV_32F): |p + flow(p) - model(p)|,
-// or with an epipole only its part across the epipolar line through model(p).
-void residualMotion(const cv::Mat& flow, const FlowCamera& camera, cv::Mat* residual);
+// or with an epipole only its part across the epipolar line through model(p); `camera_map`
+// holds model(p), as cameraMap() makes it.
+void residualMotion(const cv::Mat& flow, const cv::Mat& camera_map, const FlowCamera& camera,
+                    cv::Mat* residual);
 
 // Where each pixel of the current frame came from in the previous one (CV_32FC2, for
 // cv::remap): p + flow(p) by the flow, model(p) by the camera.

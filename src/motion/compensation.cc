@@ -121,8 +121,12 @@ cv::Mat warpPrevious(const cv::Mat& prev, const cv::Mat& cur, const cv::Matx33d&
 }
 
 cv::Mat compensatedDifference(const cv::Mat& prev, const cv::Mat& cur, const cv::Matx33d& model) {
+  return differenceToWarped(cur, warpPrevious(prev, cur, model));
+}
+
+cv::Mat differenceToWarped(const cv::Mat& cur, const cv::Mat& warped) {
   cv::Mat diff, squared, d;
-  cv::absdiff(cur, warpPrevious(prev, cur, model), diff);
+  cv::absdiff(cur, warped, diff);
   diff.convertTo(diff, CV_32F);
   cv::multiply(diff, diff, squared);
   if (cur.channels() == 1) {

@@ -92,7 +92,7 @@ class DensePipeline : public Pipeline {
     diag.prepare_ms = a.prepare_ms;
     diag.motion_ms = a.flow_ms;
     const Remember remember{a, &previous_};
-    has_compensated_ = false;
+    compensated_.release();
     input_size_ = a.input_size;
     if (a.first_frame || a.flow.empty()) return forget(a.bgr.size());
     Clock::time_point start = Clock::now();
@@ -100,19 +100,16 @@ class DensePipeline : public Pipeline {
     flowMap(a.flow, &flow_map_);
     if (!mask_.empty()) carryMask(mask_, flow_map_, &carried);
     const FlowCamera camera = fitFlowCamera(a.flow, a.texture, carried, params_, rng_);
-    residualMotion(a.flow, camera, &residual_);
     cameraMap(camera.model, a.grey.size(), &camera_map_);
-    cv::remap(previous_.bgr, compensated_, camera_map_, cv::noArray(), cv::INTER_LINEAR,
-              cv::BORDER_CONSTANT);
-    has_compensated_ = true;
+    residualMotion(a.flow, camera_map_, camera, &residual_);
+    // The fit maps current to previous working pixels; eq. (4) warps previous to current.
+    const cv::Matx33d to_current = camera.model.inv();
+    compensated_ = warpPrevious(previous_.bgr, a.bgr, to_current);
     diag.motion_ms += millisecondsSince(start);
     describe(camera, a.scale, &diag);
 
     start = Clock::now();
-    // The fit maps current to previous working pixels; eq. (4) warps previous to current.
-    const cv::Matx33d to_current = camera.model.inv();
-    diag.scene_cut =
-        isSceneCut(compensatedDifference(previous_.bgr, a.bgr, to_current), to_current);
+    diag.scene_cut = isSceneCut(differenceToWarped(a.bgr, compensated_), to_current);
     if (diag.scene_cut) return forget(a.bgr.size());
     photometric_.confirm(a.grey, previous_.grey, flow_map_, camera_map_, params_, &confirmation_);
     const float scale = residualScale(unconfirmedResiduals(camera, confirmation_), params_);
@@ -148,7 +145,7 @@ class DensePipeline : public Pipeline {
   void reset() override { flow_.reset(); }
 
   cv::Mat compensatedPreviousFrame() const override {
-    if (!has_compensated_) return cv::Mat();
+    if (compensated_.empty()) return cv::Mat();
     cv::Mat full;
     cv::resize(compensated_, full, input_size_, 0, 0, cv::INTER_LINEAR);
     return full;
@@ -182,8 +179,7 @@ class DensePipeline : public Pipeline {
   cv::Mat flow_map_, camera_map_;
   PhotometricCheck photometric_;
   PreviousFrame previous_;
-  cv::Mat compensated_;  // previous_.bgr of the pair brought to the current frame by the camera
-  bool has_compensated_ = false;
+  cv::Mat compensated_;  // the pair's previous frame warped onto the current one (eq. 4's I')
   cv::Size input_size_;
   cv::Mat halved_;  // scratch of downscale()
 };

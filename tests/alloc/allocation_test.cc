@@ -51,7 +51,7 @@ double allocationsPerFrame(Method method) {
   return static_cast<double>(counter.count()) / static_cast<double>(frames.size() - kWarmUp);
 }
 
-// Not zero yet: measured 1,721 per frame, of which OpenCV's DIS allocates 517 inside each
+// Not zero yet: measured 1,562 per frame, of which OpenCV's DIS allocates 517 inside each
 // calc(), cornerMinEigenVal 48, and the scene-cut test's compensated difference most of the
 // rest (docs/design.md, "Speed of dense"). A guard against new ones.
 TEST(Allocations, DenseStaysUnderItsMeasuredAllocationsPerFrame) {
