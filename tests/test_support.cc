@@ -174,4 +174,10 @@ double cornerError(const cv::Matx33d& estimated, const cv::Matx33d& truth, cv::S
   return worst;
 }
 
+Params withMethod(Method method) {
+  Params params;
+  params.method = method;
+  return params;
+}
+
 }  // namespace movseg::test

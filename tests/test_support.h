@@ -78,6 +78,8 @@ std::string davisSequence(const std::string& name);
 
 #include <opencv2/core.hpp>
 
+#include "movseg/params.h"
+
 namespace movseg::test {
 
 // A richly textured BGR image (smoothed noise at several scales), the same for the same seed.
@@ -85,5 +87,8 @@ cv::Mat texture(cv::Size size, std::uint64_t seed);
 
 // Maximum distance between the images of the four corners of a w x h frame under two models.
 double cornerError(const cv::Matx33d& estimated, const cv::Matx33d& truth, cv::Size size);
+
+// The default parameters with `method` chosen: for tests that read one pipeline's stages.
+Params withMethod(Method method);
 
 }  // namespace movseg::test

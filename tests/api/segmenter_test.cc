@@ -31,11 +31,7 @@ test::FramePair movingPair() {
 }
 
 // The paper's pipeline, whose seeds, matches and stage pictures these tests read.
-Params paper() {
-  Params params;
-  params.method = Method::kPaper;
-  return params;
-}
+Params paper() { return test::withMethod(Method::kPaper); }
 
 TEST(Segmenter, FirstFrameIsEmptyThenTheObjectIsFound) {
   const test::FramePair pair = movingPair();

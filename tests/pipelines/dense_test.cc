@@ -11,12 +11,6 @@
 namespace movseg {
 namespace {
 
-Params dense() {
-  Params params;
-  params.method = Method::kDense;
-  return params;
-}
-
 SynthOptions clip(SynthCamera camera, bool hard) {
   SynthOptions options;
   options.camera = camera;
@@ -35,8 +29,8 @@ SynthOptions clip(SynthCamera camera, bool hard) {
 class DenseAccuracy : public ::testing::TestWithParam<SynthCamera> {};
 
 TEST_P(DenseAccuracy, MeanIouAbove085OnPlainAnd070OnCamouflagedObjects) {
-  EXPECT_GE(test::meanIou(clip(GetParam(), false), dense()), 0.85);
-  EXPECT_GE(test::meanIou(clip(GetParam(), true), dense()), 0.70);
+  EXPECT_GE(test::meanIou(clip(GetParam(), false), test::withMethod(Method::kDense)), 0.85);
+  EXPECT_GE(test::meanIou(clip(GetParam(), true), test::withMethod(Method::kDense)), 0.70);
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryCamera, DenseAccuracy,
@@ -49,7 +43,7 @@ INSTANTIATE_TEST_SUITE_P(EveryCamera, DenseAccuracy,
 
 TEST(Dense, MasksOfTheFirstFramesDoNotDependOnLaterOnes) {
   const SynthSequence sequence(clip(SynthCamera::kMix, true));
-  Segmenter whole(dense()), stopped(dense());
+  Segmenter whole(test::withMethod(Method::kDense)), stopped(test::withMethod(Method::kDense));
   std::vector<cv::Mat> whole_masks, stopped_masks;
   for (int t = 0; t < sequence.size(); ++t) {
     whole_masks.push_back(whole.process(sequence.frame(t).frame).mask);
@@ -65,7 +59,7 @@ TEST(Dense, MasksOfTheFirstFramesDoNotDependOnLaterOnes) {
 TEST(Dense, AMoverThatLeavesTheViewLeavesTheMask) {
   const cv::Mat scene = test::texture({160, 120}, 3);
   const cv::Mat object = test::texture({30, 30}, 4);
-  Segmenter segmenter(dense());
+  Segmenter segmenter(test::withMethod(Method::kDense));
   int gone_at = -1;
   for (int t = 0; t < 40; ++t) {
     cv::Mat frame = scene.clone();

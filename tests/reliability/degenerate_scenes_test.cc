@@ -23,11 +23,7 @@ const cv::Size kSize(320, 240);
 // was large: the pair could not be aligned, and eq. (3) stopped trusting the difference.
 // These scenes exercise the paper's fallbacks (identity model, raised lambda); the contract
 // tests hold every method to valid masks on such frames.
-Params paper() {
-  Params params;
-  params.method = Method::kPaper;
-  return params;
-}
+Params paper() { return test::withMethod(Method::kPaper); }
 
 bool lambdaRaised(const Result& r) { return r.diagnostics.lambda > 10 * Params().lambda; }
 
