@@ -21,13 +21,27 @@ struct GridSample {
   float texture;
 };
 
-std::vector<GridSample> gridSamples(const cv::Mat& texture, int step) {
+std::vector<GridSample> gridSamples(const cv::Mat& grey, int step) {
   std::vector<GridSample> samples;
-  for (int y = step / 2; y < texture.rows; y += step) {
-    const float* t = texture.ptr<float>(y);
-    for (int x = step / 2; x < texture.cols; x += step) samples.push_back({{x, y}, t[x]});
+  for (int y = step / 2; y < grey.rows; y += step) {
+    for (int x = step / 2; x < grey.cols; x += step) {
+      samples.push_back({{x, y}, minEigenValueAt(grey, {x, y})});
+    }
   }
   return samples;
+}
+
+// 3x3 Sobel derivatives of `grey` at `p`, borders reflected as OpenCV's default (101).
+cv::Vec2i sobelAt(const cv::Mat& grey, cv::Point p) {
+  int column[3], row[3];
+  for (int k = 0; k < 3; ++k) {
+    column[k] = cv::borderInterpolate(p.x + k - 1, grey.cols, cv::BORDER_REFLECT_101);
+    row[k] = cv::borderInterpolate(p.y + k - 1, grey.rows, cv::BORDER_REFLECT_101);
+  }
+  const auto at = [&](int j, int i) { return static_cast<int>(grey.at<uchar>(row[j], column[i])); };
+  const int dx = (at(0, 2) - at(0, 0)) + 2 * (at(1, 2) - at(1, 0)) + (at(2, 2) - at(2, 0));
+  const int dy = (at(2, 0) - at(0, 0)) + 2 * (at(2, 1) - at(0, 1)) + (at(2, 2) - at(0, 2));
+  return {dx, dy};
 }
 
 float textureQuantile(const std::vector<GridSample>& samples, double q) {
@@ -73,10 +87,29 @@ std::optional<cv::Vec3d> findEpipole(const FlowCamera& camera, cv::Size size,
 
 }  // namespace
 
-FlowCamera fitFlowCamera(const cv::Mat& flow, const cv::Mat& texture, const cv::Mat& moving,
+float minEigenValueAt(const cv::Mat& grey, cv::Point p) {
+  constexpr int kWindow = 5;
+  // cornerMinEigenVal's normalisation: Sobel's weight (4), the window side, 8-bit range.
+  constexpr double kScale = 1.0 / (4 * kWindow * 255.0);
+  double xx = 0, xy = 0, yy = 0;
+  for (int j = -kWindow / 2; j <= kWindow / 2; ++j) {
+    const int y = cv::borderInterpolate(p.y + j, grey.rows, cv::BORDER_REFLECT_101);
+    for (int i = -kWindow / 2; i <= kWindow / 2; ++i) {
+      const int x = cv::borderInterpolate(p.x + i, grey.cols, cv::BORDER_REFLECT_101);
+      const cv::Vec2d d = cv::Vec2d(sobelAt(grey, {x, y})) * kScale;
+      xx += d[0] * d[0];
+      xy += d[0] * d[1];
+      yy += d[1] * d[1];
+    }
+  }
+  const double a = xx / 2, c = yy / 2;
+  return static_cast<float>((a + c) - std::sqrt((a - c) * (a - c) + xy * xy));
+}
+
+FlowCamera fitFlowCamera(const cv::Mat& flow, const cv::Mat& grey, const cv::Mat& moving,
                          const Params& params, cv::RNG& rng) {
   FlowCamera camera;
-  const std::vector<GridSample> grid = gridSamples(texture, params.flow_sample_step);
+  const std::vector<GridSample> grid = gridSamples(grey, params.flow_sample_step);
   const float flat = textureQuantile(grid, params.flow_texture_quantile);
   size_t background = 0;
   for (const GridSample& s : grid) {

@@ -22,11 +22,10 @@
 namespace movseg {
 namespace {
 
-// Phase 1: the frame at the working scale, its texture and its flow to the previous frame.
+// Phase 1: the frame at the working scale and its flow to the previous frame.
 struct DenseAnalysis : Analysis {
   cv::Mat bgr;      // segmentation scale
   cv::Mat grey;
-  cv::Mat texture;  // smaller eigenvalue of the structure tensor
   cv::Mat flow;     // to the previous frame; empty on a first frame
   double scale = 1;  // bgr = the frame scaled by this
   cv::Size input_size;
@@ -103,7 +102,6 @@ class DensePipeline : public Pipeline {
     a.input_size = bgr.size();
     downscale(bgr, size, &halved_, &a.bgr);
     cv::cvtColor(a.bgr, a.grey, cv::COLOR_BGR2GRAY);
-    cv::cornerMinEigenVal(a.grey, a.texture, 5);
     a.prepare_ms = millisecondsSince(start);
     start = Clock::now();
     if (a.first_frame) flow_.reset();
@@ -124,7 +122,7 @@ class DensePipeline : public Pipeline {
     cv::Mat carried, evidence;
     flowMap(a.flow, &flow_map_);
     if (!mask_.empty()) carryMask(mask_, flow_map_, &carried);
-    const FlowCamera camera = fitFlowCamera(a.flow, a.texture, carried, params_, rng_);
+    const FlowCamera camera = fitFlowCamera(a.flow, a.grey, carried, params_, rng_);
     cameraMap(camera.model, a.grey.size(), &camera_map_);
     residualMotion(a.flow, camera_map_, camera, &residual_);
     // The fit maps current to previous working pixels; eq. (4) warps previous to current.
