@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "core/quantile.h"
 #include "motion/estimators.h"
@@ -31,14 +32,20 @@ std::vector<GridSample> gridSamples(const cv::Mat& grey, int step) {
   return samples;
 }
 
-// 3x3 Sobel derivatives of `grey` at `p`, borders reflected as OpenCV's default (101).
+// Index v of a row or column of n pixels, reflected as OpenCV's default border (101) outside.
+int reflected(int v, int n) {
+  return v >= 0 && v < n ? v : cv::borderInterpolate(v, n, cv::BORDER_REFLECT_101);
+}
+
+// 3x3 Sobel derivatives of `grey` at `p`, borders reflected.
 cv::Vec2i sobelAt(const cv::Mat& grey, cv::Point p) {
-  int column[3], row[3];
+  const uchar* rows[3];
+  int column[3];
   for (int k = 0; k < 3; ++k) {
-    column[k] = cv::borderInterpolate(p.x + k - 1, grey.cols, cv::BORDER_REFLECT_101);
-    row[k] = cv::borderInterpolate(p.y + k - 1, grey.rows, cv::BORDER_REFLECT_101);
+    rows[k] = grey.ptr<uchar>(reflected(p.y + k - 1, grey.rows));
+    column[k] = reflected(p.x + k - 1, grey.cols);
   }
-  const auto at = [&](int j, int i) { return static_cast<int>(grey.at<uchar>(row[j], column[i])); };
+  const auto at = [&](int j, int i) { return static_cast<int>(rows[j][column[i]]); };
   const int dx = (at(0, 2) - at(0, 0)) + 2 * (at(1, 2) - at(1, 0)) + (at(2, 2) - at(2, 0));
   const int dy = (at(2, 0) - at(0, 0)) + 2 * (at(2, 1) - at(0, 1)) + (at(2, 2) - at(0, 2));
   return {dx, dy};
@@ -89,21 +96,23 @@ std::optional<cv::Vec3d> findEpipole(const FlowCamera& camera, cv::Size size,
 
 float minEigenValueAt(const cv::Mat& grey, cv::Point p) {
   constexpr int kWindow = 5;
-  // cornerMinEigenVal's normalisation: Sobel's weight (4), the window side, 8-bit range.
+  // cornerMinEigenVal's normalisation: Sobel's weight (4), the window side, 8-bit range. The
+  // sums of products of integer derivatives are exact; the scale comes last.
   constexpr double kScale = 1.0 / (4 * kWindow * 255.0);
-  double xx = 0, xy = 0, yy = 0;
+  std::int64_t xx = 0, xy = 0, yy = 0;
   for (int j = -kWindow / 2; j <= kWindow / 2; ++j) {
-    const int y = cv::borderInterpolate(p.y + j, grey.rows, cv::BORDER_REFLECT_101);
+    const int y = reflected(p.y + j, grey.rows);
     for (int i = -kWindow / 2; i <= kWindow / 2; ++i) {
-      const int x = cv::borderInterpolate(p.x + i, grey.cols, cv::BORDER_REFLECT_101);
-      const cv::Vec2d d = cv::Vec2d(sobelAt(grey, {x, y})) * kScale;
+      const cv::Vec2i d = sobelAt(grey, {reflected(p.x + i, grey.cols), y});
       xx += d[0] * d[0];
       xy += d[0] * d[1];
       yy += d[1] * d[1];
     }
   }
-  const double a = xx / 2, c = yy / 2;
-  return static_cast<float>((a + c) - std::sqrt((a - c) * (a - c) + xy * xy));
+  const double a = static_cast<double>(xx) * kScale * kScale / 2;
+  const double b = static_cast<double>(xy) * kScale * kScale;
+  const double c = static_cast<double>(yy) * kScale * kScale / 2;
+  return static_cast<float>((a + c) - std::sqrt((a - c) * (a - c) + b * b));
 }
 
 FlowCamera fitFlowCamera(const cv::Mat& flow, const cv::Mat& grey, const cv::Mat& moving,
