@@ -31,6 +31,7 @@ class ColourModel {
   Params params_;
   int shift_;  // 8 - colour_bits: an 8-bit channel shifted right by this is its bin
   std::vector<float> foreground_, background_;  // normalised histograms; empty until learnt
+  std::vector<float> evidence_;                  // per bin: what addEvidence() adds
   std::vector<float> count_fg_, count_bg_;      // scratch of update()
 };
 
