@@ -98,7 +98,8 @@ void carryMask(const cv::Mat& previous_mask, const cv::Mat& flow_map, cv::Mat* c
             cv::BORDER_CONSTANT, cv::Scalar(0));
 }
 
-void addMemory(const cv::Mat& carried, const Params& params, cv::Mat* evidence) {  // log(p / (1 - p)) per 8-bit level of the carried mask, p softened towards one half.
+void addMemory(const cv::Mat& carried, const Params& params, cv::Mat* evidence) {
+  // log(p / (1 - p)) per 8-bit level of the carried mask, p softened towards one half.
   const auto floor = static_cast<float>(params.memory_floor);
   const auto weight = static_cast<float>(params.memory_weight);
   float logit[256];

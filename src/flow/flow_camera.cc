@@ -62,7 +62,8 @@ float textureQuantile(const std::vector<GridSample>& samples, double q) {
 // Residual motion of a point: from where the camera puts it, x, to where the flow does, y.
 float residualOf(const cv::Point2f& x, const cv::Point2f& y, const FlowCamera& camera) {
   if (camera.epipole) return static_cast<float>(EpipoleEstimator::offLine(x, y, *camera.epipole));
-  return static_cast<float>(std::hypot(y.x - x.x, y.y - x.y));
+  const float dx = y.x - x.x, dy = y.y - x.y;
+  return std::sqrt(dx * dx + dy * dy);  // flow distances cannot overflow: hypot's care not needed
 }
 
 // Off-plane samples must be at least this many, and this share of the background's, before
