@@ -16,11 +16,6 @@ constexpr float kBinFloor = 1e-4f;
 ColourModel::ColourModel(const Params& params)
     : params_(params), shift_(8 - params.colour_bits) {}
 
-int ColourModel::binOf(const cv::Vec3b& c) const {
-  const int bits = 8 - shift_;
-  return ((c[0] >> shift_) << (2 * bits)) | ((c[1] >> shift_) << bits) | (c[2] >> shift_);
-}
-
 void ColourModel::addEvidence(const cv::Mat& bgr, cv::Mat* evidence) const {
   if (evidence_.empty()) return;
   for (int y = 0; y < bgr.rows; ++y) {
