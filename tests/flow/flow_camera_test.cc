@@ -9,16 +9,10 @@
 namespace movseg {
 namespace {
 
-cv::Mat greyTexture(cv::Size size, std::uint64_t seed) {
-  cv::Mat grey;
-  cv::cvtColor(test::texture(size, seed), grey, cv::COLOR_BGR2GRAY);
-  return grey;
-}
-
 // The texture measured at the samples alone is OpenCV's, inside the frame and on its borders
 // and corners, where both reflect the image.
 TEST(FlowCamera, TextureAtAPixelIsCornerMinEigenValsThere) {
-  const cv::Mat grey = greyTexture({61, 47}, 3);
+  const cv::Mat grey = test::greyTexture({61, 47}, 3);
   cv::Mat expected;
   cv::cornerMinEigenVal(grey, expected, 5);
   double largest = 0;
@@ -47,7 +41,7 @@ TEST(FlowCamera, FitsTheCameraAroundAMarkedMoverAndLeavesItsMotionAsResidual) {
   }
   moving(mover).setTo(255);
   cv::RNG rng(1);
-  const FlowCamera fit = fitFlowCamera(flow, greyTexture(size, 4), moving, Params(), rng);
+  const FlowCamera fit = fitFlowCamera(flow, test::greyTexture(size, 4), moving, Params(), rng);
   ASSERT_FALSE(fit.fallback);
   EXPECT_LT(cv::norm(cv::Matx33d(fit.model * (1.0 / fit.model(2, 2))) - camera), 1e-3);
   cv::Mat camera_map, residual;
