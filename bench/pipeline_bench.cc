@@ -7,19 +7,17 @@
 // faults per frame (memory the pipeline hands back and takes again).
 // DAVIS clips are read from $MOVSEG_DATA/davis2016 (default ../shared/data/davis2016 beside the
 // source tree) and left out when absent.
+#include <benchmark/benchmark.h>
 #include <sys/resource.h>
 
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
-#include <string>
-#include <vector>
-
-#include <benchmark/benchmark.h>
-
 #include <opencv2/core/utility.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <string>
+#include <vector>
 
 #include "classify/classify.h"
 #include "core/frame.h"
@@ -67,8 +65,8 @@ struct StageInputs {
                                        rescaleModel(step.model, image.seg_scale));
     const auto s = static_cast<float>(image.seg_scale / image.align_scale);
     for (const cv::Point2f& p : cur->alignment.features) points.push_back(p * s);
-    const FeatureClasses classes = classifyFeatures(
-        difference, image.seg_bgr, points, step.staticPoints(image.seg_scale), params);
+    const FeatureClasses classes = classifyFeatures(difference, image.seg_bgr, points,
+                                                    step.staticPoints(image.seg_scale), params);
     for (size_t i = 0; i < points.size(); ++i) {
       if (classes.labels[i] == FeatureLabel::kForeground) fg.push_back(points[i]);
       if (classes.labels[i] == FeatureLabel::kBackground) bg.push_back(points[i]);
@@ -98,7 +96,8 @@ void BM_Difference(benchmark::State& state) {
   const PreparedFrame& cur = in.cur->image;
   const cv::Matx33d model = rescaleModel(in.step.model, cur.seg_scale);
   for (auto _ : state) {
-    benchmark::DoNotOptimize(compensatedDifference(in.prev->image.seg_smooth, cur.seg_smooth, model));
+    benchmark::DoNotOptimize(
+        compensatedDifference(in.prev->image.seg_smooth, cur.seg_smooth, model));
   }
 }
 
@@ -159,19 +158,22 @@ Clip synthClip(cv::Size size) {
 
 std::string davisRoot() {
   const char* data = std::getenv("MOVSEG_DATA");
-  return (data != nullptr ? std::string(data) : std::string(MOVSEG_SOURCE_DIR) + "/../shared/data") +
+  return (data != nullptr ? std::string(data)
+                          : std::string(MOVSEG_SOURCE_DIR) + "/../shared/data") +
          "/davis2016";
 }
 
 // The first 12 frames of a DAVIS sequence, resized to `size` (empty: as stored); no frames when
 // the data is absent.
 Clip davisClip(const std::string& sequence, cv::Size size) {
-  Clip clip{"davis-" + sequence + "/" + (size.empty() ? "native" : std::to_string(size.width) + "x" +
-                                                                      std::to_string(size.height)),
+  Clip clip{"davis-" + sequence + "/" +
+                (size.empty() ? "native"
+                              : std::to_string(size.width) + "x" + std::to_string(size.height)),
             {}};
   std::vector<std::string> files;
   std::error_code error;
-  for (const auto& entry : std::filesystem::directory_iterator(davisRoot() + "/" + sequence + "/frames", error)) {
+  for (const auto& entry :
+       std::filesystem::directory_iterator(davisRoot() + "/" + sequence + "/frames", error)) {
     files.push_back(entry.path().string());
   }
   std::sort(files.begin(), files.end());
@@ -223,10 +225,9 @@ void registerPipelines() {
   }
   for (const Clip& clip : clips) {
     for (const std::string& method : enumNames<Method>()) {
-      benchmark::RegisterBenchmark(("BM_Process/" + clip.name + "/" + method).c_str(),
-                                   [clip, method](benchmark::State& state) {
-                                     processClip(state, clip, method);
-                                   })
+      benchmark::RegisterBenchmark(
+          ("BM_Process/" + clip.name + "/" + method).c_str(),
+          [clip, method](benchmark::State& state) { processClip(state, clip, method); })
           ->Unit(benchmark::kMillisecond);
     }
   }

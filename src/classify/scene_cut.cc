@@ -21,7 +21,8 @@ bool isSceneCut(const cv::Mat& difference, const cv::Matx33d& model) {
       if (inside[x] != 0) d.push_back(value[x]);
     }
   }
-  const double covered_share = static_cast<double>(d.size()) / static_cast<double>(difference.total());
+  const double covered_share =
+      static_cast<double>(d.size()) / static_cast<double>(difference.total());
   if (d.empty()) return isSceneCut(covered_share, 0);
   const auto middle = d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2);
   std::nth_element(d.begin(), middle, d.end());

@@ -17,21 +17,6 @@ namespace {
 constexpr size_t kMinBackgroundSamples = 50;
 constexpr double kMinBackgroundShare = 0.3;
 
-struct GridSample {
-  cv::Point at;
-  float texture;
-};
-
-std::vector<GridSample> gridSamples(const cv::Mat& grey, int step) {
-  std::vector<GridSample> samples;
-  for (int y = step / 2; y < grey.rows; y += step) {
-    for (int x = step / 2; x < grey.cols; x += step) {
-      samples.push_back({{x, y}, minEigenValueAt(grey, {x, y})});
-    }
-  }
-  return samples;
-}
-
 // Index v of a row or column of n pixels, reflected as OpenCV's default border (101) outside.
 int reflected(int v, int n) {
   return v >= 0 && v < n ? v : cv::borderInterpolate(v, n, cv::BORDER_REFLECT_101);
@@ -116,10 +101,19 @@ float minEigenValueAt(const cv::Mat& grey, cv::Point p) {
   return static_cast<float>((a + c) - std::sqrt((a - c) * (a - c) + b * b));
 }
 
-FlowCamera fitFlowCamera(const cv::Mat& flow, const cv::Mat& grey, const cv::Mat& moving,
-                         const Params& params, cv::RNG& rng) {
+std::vector<GridSample> gridSamples(const cv::Mat& grey, int step) {
+  std::vector<GridSample> samples;
+  for (int y = step / 2; y < grey.rows; y += step) {
+    for (int x = step / 2; x < grey.cols; x += step) {
+      samples.push_back({{x, y}, minEigenValueAt(grey, {x, y})});
+    }
+  }
+  return samples;
+}
+
+FlowCamera fitFlowCamera(const cv::Mat& flow, const std::vector<GridSample>& grid,
+                         const cv::Mat& moving, const Params& params, cv::RNG& rng) {
   FlowCamera camera;
-  const std::vector<GridSample> grid = gridSamples(grey, params.flow_sample_step);
   const float flat = textureQuantile(grid, params.flow_texture_quantile);
   size_t background = 0;
   for (const GridSample& s : grid) {
@@ -131,7 +125,7 @@ FlowCamera fitFlowCamera(const cv::Mat& flow, const cv::Mat& grey, const cv::Mat
     background += camera.background.back();
   }
   if (background < std::max<size_t>(kMinBackgroundSamples,
-                                     static_cast<size_t>(kMinBackgroundShare * camera.at.size()))) {
+                                    static_cast<size_t>(kMinBackgroundShare * camera.at.size()))) {
     std::fill(camera.background.begin(), camera.background.end(), 1);
   }
   if (params.static_camera) return camera;  // §4.1: the identity, nothing to fit
@@ -148,7 +142,8 @@ FlowCamera fitFlowCamera(const cv::Mat& flow, const cv::Mat& grey, const cv::Mat
   const auto report = Ransac<HomographyEstimator>(options).estimate(x, y, flow.size(), rng);
   camera.fallback = !report.success;
   if (report.success) camera.model = report.model;
-  if (report.success && params.parallax) camera.epipole = findEpipole(camera, flow.size(), options, rng);
+  if (report.success && params.parallax)
+    camera.epipole = findEpipole(camera, flow.size(), options, rng);
   return camera;
 }
 

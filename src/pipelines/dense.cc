@@ -22,11 +22,14 @@
 namespace movseg {
 namespace {
 
-// Phase 1: the frame at the working scale and its flow to the previous frame.
+// Phase 1: the frame at the working scale and its flow to the previous frame — all that does not
+// need the previous frame's mask, so that it runs while that mask is made (StreamSegmenter).
 struct DenseAnalysis : Analysis {
   cv::Mat bgr;      // segmentation scale
   cv::Mat grey;
+  std::vector<GridSample> samples;  // where the camera is fitted
   cv::Mat flow;     // to the previous frame; empty on a first frame
+  cv::Mat flow_map;  // where the flow takes each pixel (flowMap)
   double scale = 1;  // bgr = the frame scaled by this
   cv::Size input_size;
   double prepare_ms = 0, flow_ms = 0;
@@ -102,10 +105,12 @@ class DensePipeline : public Pipeline {
     a.input_size = bgr.size();
     downscale(bgr, size, &halved_, &a.bgr);
     cv::cvtColor(a.bgr, a.grey, cv::COLOR_BGR2GRAY);
+    a.samples = gridSamples(a.grey, params_.flow_sample_step);
     a.prepare_ms = millisecondsSince(start);
     start = Clock::now();
     if (a.first_frame) flow_.reset();
     flow_.next(a.grey, &a.flow);
+    if (!a.flow.empty()) flowMap(a.flow, &a.flow_map);
     a.flow_ms = millisecondsSince(start);
   }
 
@@ -120,9 +125,8 @@ class DensePipeline : public Pipeline {
     if (a.first_frame || a.flow.empty()) return forget(a.bgr.size());
     Clock::time_point start = Clock::now();
     cv::Mat carried, evidence;
-    flowMap(a.flow, &flow_map_);
-    if (!mask_.empty()) carryMask(mask_, flow_map_, &carried);
-    const FlowCamera camera = fitFlowCamera(a.flow, a.grey, carried, params_, rng_);
+    if (!mask_.empty()) carryMask(mask_, a.flow_map, &carried);
+    const FlowCamera camera = fitFlowCamera(a.flow, a.samples, carried, params_, rng_);
     cameraMap(camera.model, a.grey.size(), &camera_map_);
     residualMotion(a.flow, camera_map_, camera, &residual_);
     // The fit maps current to previous working pixels; eq. (4) warps previous to current.
@@ -134,7 +138,7 @@ class DensePipeline : public Pipeline {
     start = Clock::now();
     diag.scene_cut = isSceneCutUnderCamera(a.bgr, previous_.bgr, camera_map_, &scene_cut_scratch_);
     if (diag.scene_cut) return forget(a.bgr.size());
-    photometric_.confirm(a.grey, previous_.grey, flow_map_, camera_map_, params_, &confirmation_);
+    photometric_.confirm(a.grey, previous_.grey, a.flow_map, camera_map_, params_, &confirmation_);
     const float scale = residualScale(unconfirmedResiduals(camera, confirmation_), params_);
     diag.residual_scale = scale;
     motionEvidence(residual_, scale, params_, &evidence);
@@ -200,7 +204,7 @@ class DensePipeline : public Pipeline {
   cv::RNG rng_;
   cv::Mat mask_;  // the last frame's, at the working scale
   cv::Mat residual_, confirmation_;
-  cv::Mat flow_map_, camera_map_;
+  cv::Mat camera_map_;
   PhotometricCheck photometric_;
   PreviousFrame previous_;
   std::vector<float> scene_cut_scratch_;

@@ -1,6 +1,7 @@
 #include "flow/flow_camera.h"
 
 #include <gtest/gtest.h>
+
 #include <opencv2/imgproc.hpp>
 
 #include "motion/model.h"
@@ -35,13 +36,17 @@ TEST(FlowCamera, FitsTheCameraAroundAMarkedMoverAndLeavesItsMotionAsResidual) {
   for (int y = 0; y < size.height; ++y) {
     for (int x = 0; x < size.width; ++x) {
       const cv::Point2f p(static_cast<float>(x), static_cast<float>(y));
-      const cv::Point2f to = applyModel(camera, p) + (mover.contains({x, y}) ? cv::Point2f(4, -3) : cv::Point2f());
+      const cv::Point2f to =
+          applyModel(camera, p) + (mover.contains({x, y}) ? cv::Point2f(4, -3) : cv::Point2f());
       flow.at<cv::Vec2f>(y, x) = cv::Vec2f(to.x - p.x, to.y - p.y);
     }
   }
   moving(mover).setTo(255);
   cv::RNG rng(1);
-  const FlowCamera fit = fitFlowCamera(flow, test::greyTexture(size, 4), moving, Params(), rng);
+  const Params params;
+  const std::vector<GridSample> samples =
+      gridSamples(test::greyTexture(size, 4), params.flow_sample_step);
+  const FlowCamera fit = fitFlowCamera(flow, samples, moving, params, rng);
   ASSERT_FALSE(fit.fallback);
   EXPECT_LT(cv::norm(cv::Matx33d(fit.model * (1.0 / fit.model(2, 2))) - camera), 1e-3);
   cv::Mat camera_map, residual;
