@@ -8,8 +8,11 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <deque>
 #include <filesystem>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
@@ -17,6 +20,7 @@
 #include <opencv2/videoio.hpp>
 
 #include "commands.h"
+#include "concurrent.h"
 #include "core/frame.h"
 #include "io/atomic_write.h"
 #include "io/frame_source.h"
@@ -25,6 +29,7 @@
 #include "live_window.h"
 #include "movseg/fields.h"
 #include "movseg/segmenter.h"
+#include "movseg/stream_segmenter.h"
 #include "progress.h"
 
 namespace movseg::cli {
@@ -38,22 +43,30 @@ std::atomic<bool> g_stop{false};
 extern "C" void onSignal(int) { g_stop = true; }
 
 // SIGINT / SIGTERM end the run after the current frame (a blocking read of a stream gives up at
-// once); what was written stays complete.
+// once); what was written stays complete. Runs at once (several inputs, bench --threads) and a
+// batch around them share one installation: the first scope clears the flag and installs the
+// handlers, the last restores the previous ones.
 class StopOnSignal {
  public:
   StopOnSignal() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (scopes_++ > 0) return;
     g_stop = false;
     previous_int_ = std::signal(SIGINT, onSignal);
     previous_term_ = std::signal(SIGTERM, onSignal);
   }
   ~StopOnSignal() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (--scopes_ > 0) return;
     std::signal(SIGINT, previous_int_);
     std::signal(SIGTERM, previous_term_);
   }
 
  private:
-  void (*previous_int_)(int);
-  void (*previous_term_)(int);
+  static inline std::mutex mutex_;
+  static inline int scopes_ = 0;
+  static inline void (*previous_int_)(int) = nullptr;
+  static inline void (*previous_term_)(int) = nullptr;
 };
 
 void makeFolder(const std::string& path) {
@@ -351,6 +364,61 @@ class RunOutputs {
   bool finished_ = false;
 };
 
+// A frame given to the segmenter, waiting for its result: one push later on two threads.
+struct PushedFrame {
+  int index = 0;
+  cv::Size size;          // the frame's own: the mask is scaled back to it
+  cv::Mat frame;          // kept only when an overlay is drawn (the source reuses its buffer)
+  SourceReport source;    // as it was when the frame was read
+  int new_errors = 0;     // decode errors reported while it was read
+};
+
+// Each pushed frame's result, in order, to the run's outputs (the mask at the frame's size, the
+// overlay, the live window) and its summary.
+class ResultWriter {
+ public:
+  ResultWriter(const SegmentOptions& options, RunOutputs* outputs, SegmentSummary* summary,
+               Progress* progress, LiveWindow* window)
+      : options_(options), outputs_(outputs), summary_(summary), progress_(progress), window_(window) {}
+
+  bool drawsOverlay() const { return !options_.overlay.empty() || options_.show; }
+
+  void expect(PushedFrame pushed) { waiting_.push_back(std::move(pushed)); }
+
+  // The result of the oldest frame expected, if the segmenter gave one; false when the viewer
+  // closed the live window.
+  bool write(std::optional<Result> given) {
+    if (!given) return true;
+    Result& result = *given;
+    const PushedFrame pushed = std::move(waiting_.front());
+    waiting_.pop_front();
+    if (result.mask.size() != pushed.size) {
+      cv::resize(result.mask, result.mask, pushed.size, 0, 0, cv::INTER_NEAREST);
+    }
+    summary_->frame_ms.add(result.diagnostics.total_ms);
+    summary_->resets += result.diagnostics.reset;
+    summary_->motion_fallbacks += result.diagnostics.motion_fallback;
+    summary_->scene_cuts += result.diagnostics.scene_cut;
+    cv::Mat picture;
+    if (drawsOverlay()) {
+      picture = drawOverlay(pushed.frame, result, hudLine(pushed.index, result.diagnostics),
+                            options_.feature_dots);
+    }
+    outputs_->write(pushed.index, result, picture, pushed.source, pushed.new_errors);
+    ++summary_->frames;
+    progress_->update(summary_->frames);
+    return window_->show(picture);
+  }
+
+ private:
+  const SegmentOptions& options_;
+  RunOutputs* outputs_;
+  SegmentSummary* summary_;
+  Progress* progress_;
+  LiveWindow* window_;
+  std::deque<PushedFrame> waiting_;  // pushed, oldest first, their results not yet written
+};
+
 }  // namespace
 
 bool SegmentSummary::truncated() const {
@@ -364,7 +432,9 @@ SegmentSummary runSegmentation(const SegmentOptions& options) {
   LiveWindow window(options.show);
   Params params = options.params;
   params.debug_images = params.debug_images || options.debug;
-  Segmenter segmenter(params);
+  // One code path for both thread counts: on one thread each frame's result is flushed at once,
+  // as Segmenter::process would give it.
+  StreamSegmenter segmenter(params, options.threads);
   StopOnSignal stop_on_signal;
   std::unique_ptr<FrameSource> source =
       FrameSource::open(options.input, DecoderLimits{options.timeout, &g_stop});
@@ -375,11 +445,19 @@ SegmentSummary runSegmentation(const SegmentOptions& options) {
   int total = source->report().expected_frames;
   if (options.max_frames >= 0 && (total < 0 || total > options.max_frames)) total = options.max_frames;
   Progress progress("segment", total, options.quiet);
+  ResultWriter writer(options, &outputs, &summary, &progress, &window);
+  const auto checked = [&](auto step) {
+    try {
+      return step();
+    } catch (const std::exception& e) {
+      throw std::runtime_error(source->describe() + ": " + e.what());
+    }
+  };
   const auto start = std::chrono::steady_clock::now();
   cv::Mat frame;
-  int decode_errors = 0;
+  int decode_errors = 0, pushed = 0;
   for (;;) {
-    if (options.max_frames >= 0 && summary.frames >= options.max_frames) {
+    if (options.max_frames >= 0 && pushed >= options.max_frames) {
       summary.reached_max_frames = true;
       break;
     }
@@ -392,29 +470,14 @@ SegmentSummary runSegmentation(const SegmentOptions& options) {
       throw std::runtime_error(source->describe() + ": decode error: " + summary.source.last_error);
     }
     if (!got) break;
-    const int index = summary.frames;
-    Result result;
-    try {
-      result = segmenter.process(resizedTo(frame, options.resize));
-    } catch (const std::exception& e) {
-      throw std::runtime_error(source->describe() + ": " + e.what());
-    }
-    if (result.mask.size() != frame.size()) {
-      cv::resize(result.mask, result.mask, frame.size(), 0, 0, cv::INTER_NEAREST);
-    }
-    summary.frame_ms.add(result.diagnostics.total_ms);
-    summary.resets += result.diagnostics.reset;
-    summary.motion_fallbacks += result.diagnostics.motion_fallback;
-    summary.scene_cuts += result.diagnostics.scene_cut;
-    cv::Mat picture;
-    if (!options.overlay.empty() || options.show) {
-      picture = drawOverlay(frame, result, hudLine(index, result.diagnostics), options.feature_dots);
-    }
-    outputs.write(index, result, picture, summary.source, new_errors);
-    ++summary.frames;
-    progress.update(summary.frames);
-    if (!window.show(picture)) break;
+    writer.expect({pushed++, frame.size(), writer.drawsOverlay() ? frame.clone() : cv::Mat(),
+                   summary.source, new_errors});
+    std::optional<Result> result =
+        checked([&] { return segmenter.push(resizedTo(frame, options.resize)); });
+    if (options.threads == 1) result = checked([&] { return segmenter.flush(); });
+    if (!writer.write(std::move(result))) break;
   }
+  writer.write(checked([&] { return segmenter.flush(); }));  // the last frame's, on two threads
   summary.interrupted = g_stop;
   progress.finish();
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -424,6 +487,77 @@ SegmentSummary runSegmentation(const SegmentOptions& options) {
                              (summary.source.timed_out ? " (no answer within the timeout)" : ""));
   }
   return summary;
+}
+
+std::vector<RunOutcome> runSegmentations(
+    const std::vector<SegmentOptions>& runs, int threads,
+    const std::function<void(size_t index, const RunOutcome& outcome)>& ended) {
+  StopOnSignal stop_on_signal;  // one for the batch: a signal between two runs is not lost
+  std::vector<RunOutcome> outcomes(runs.size());
+  std::mutex ended_mutex;
+  runConcurrently(runs.size(), threads, [&](size_t i) {
+    RunOutcome& outcome = outcomes[i];
+    if (g_stop) {
+      outcome.summary.interrupted = true;
+    } else {
+      try {
+        outcome.summary = runSegmentation(runs[i]);
+      } catch (const std::exception& e) {
+        outcome.error = e.what();
+      }
+    }
+    const std::lock_guard<std::mutex> lock(ended_mutex);
+    ended(i, outcome);
+  });
+  return outcomes;
+}
+
+std::string inputName(const std::string& input) {
+  fs::path path = fs::path(input).lexically_normal();
+  if (!path.has_filename()) path = path.parent_path();  // "walk/" is "walk"
+  std::error_code error;
+  if (!fs::is_directory(path, error)) return path.stem().string();
+  const std::string name = path.filename().string();
+  const bool layout = name == "frames" || name == "input" || name == "images";
+  return layout ? path.parent_path().filename().string() : name;
+}
+
+std::vector<SegmentOptions> perInputRuns(const SegmentOptions& shared,
+                                         const std::vector<std::string>& inputs) {
+  if (shared.show) throw UsageError("--show takes one input");
+  for (const auto& [option, name] : {std::pair<const char*, std::string>{"--stats", shared.stats_file},
+                                     {"--overlay", shared.overlay}}) {
+    if (fs::path(name).has_parent_path()) {
+      throw UsageError(std::string(option) + " '" + name +
+                       "': with several inputs, a file name written in each input's folder");
+    }
+  }
+  std::map<std::string, std::string> named;  // name -> input
+  std::vector<SegmentOptions> runs;
+  for (const std::string& input : inputs) {
+    const std::string name = inputName(input);
+    if (name.empty() || name == "." || name == "..") {
+      throw UsageError("'" + input + "': no name for its output folder");
+    }
+    if (!named.emplace(name, input).second) {
+      throw UsageError("'" + named[name] + "' and '" + input + "' would both write " +
+                       (fs::path(shared.output_dir) / name).string() + ": rename one");
+    }
+    const std::string path = inputPath(input);
+    if (!path.empty() && isSameOrInside(shared.output_dir, path)) {
+      throw UsageError("-o '" + shared.output_dir + "' would write into the input '" + input + "'");
+    }
+    SegmentOptions run = shared;
+    run.input = input;
+    run.output_dir = (fs::path(shared.output_dir) / name).string();
+    const auto inFolder = [&](const std::string& file) {
+      return file.empty() ? file : (fs::path(run.output_dir) / file).string();
+    };
+    run.stats_file = inFolder(shared.stats_file);
+    run.overlay = inFolder(shared.overlay);
+    runs.push_back(std::move(run));
+  }
+  return runs;
 }
 
 std::string describeInputProblems(const SegmentSummary& summary) {

@@ -78,8 +78,11 @@ struct StreamSegmenter::Impl {
   }
 
   FrameLoop loop;
-  std::unique_ptr<FrameLoop::Job> jobs[2];  // in turn: the pending one and the next one
-  int pending = -1;                         // the job analysed but not segmented, if any
+  // In turn, frame after frame (a pipeline may keep references into the previous frame's
+  // analysis, as Segmenter's jobs): the pending one and the next one.
+  std::unique_ptr<FrameLoop::Job> jobs[2];
+  int next = 0;      // the job of the next frame pushed, whether or not flush() came between
+  int pending = -1;  // the job analysed but not segmented, if any
   cv::Mat incoming;                         // the frame being analysed
   std::unique_ptr<Worker> worker;           // null with one thread
 
@@ -143,7 +146,8 @@ std::optional<Result> StreamSegmenter::push(const cv::Mat& frame) {
   Impl& s = *impl_;
   s.settle();
   s.incoming = s.loop.ownedBgr(frame);
-  const int slot = s.pending == 0 ? 1 : 0;
+  const int slot = s.next;
+  s.next = 1 - slot;
   s.analyseIncoming(s.jobs[slot].get());
   std::optional<Result> previous = s.segmentPending();  // while the worker analyses the frame
   s.pending = slot;
