@@ -73,6 +73,25 @@ TEST(SegmentRuns, OneStreamOnTwoThreadsWritesTheOneThreadFiles) {
   expectSameFiles(dir / "1", dir / "2");
 }
 
+// On two threads the frames are read ahead and the last one is still being segmented when the
+// next read fails: it is written all the same, as on one thread.
+TEST(SegmentRuns, ACorruptFrameEndsTheRunWithEveryFrameBeforeItWritten) {
+  const test::TempDir dir;
+  const std::string clip = writeClip(dir / "clip", 5);
+  { std::ofstream(clip + "/00003.png", std::ios::trunc) << "garbage"; }
+  for (const int threads : {1, 2}) {
+    const std::string out = dir / std::to_string(threads);
+    try {
+      runSegmentation(runOf(clip, out, threads));
+      ADD_FAILURE() << "no error on " << threads << " threads";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("00003.png"), std::string::npos) << e.what();
+    }
+    EXPECT_TRUE(fs::exists(out + "/00002.png")) << threads;
+    EXPECT_FALSE(fs::exists(out + "/00003.png")) << threads;
+  }
+}
+
 // Two clips of images and a video, with an input that does not exist among them.
 TEST(SegmentRuns, InputsAtOnceWriteWhatEachWritesAloneAndAFailureEndsAlone) {
   const test::TempDir dir;
