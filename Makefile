@@ -82,10 +82,13 @@ test-fuzz: deps
 	@cmake --build $(FUZZ_DIR) -j $(JOBS) --target segmenter_fuzz readers_fuzz video_fuzz
 	@bash fuzz/run.sh $(FUZZ_DIR) $(FUZZ_SECONDS)
 
+# Micro-benchmarks (synthetic and DAVIS clips, MOG2 beside), then a whole `segment` run against
+# a Python cv2 MOG2 run (skipped without the DAVIS data).
 bench: deps
 	@$(MAKE) --no-print-directory build
 	@$(BUILD_DIR)/bench/movseg_bench --benchmark_min_time=0.5 --benchmark_repetitions=5 \
 	  --benchmark_report_aggregates_only=true
+	@/usr/bin/python3 bench/whole_run.py --movseg $(BUILD_DIR)/movseg --skip-without-data
 
 # 20,000 frames through one Segmenter; fails when resident memory grows by more than 4 MiB.
 long-run: deps

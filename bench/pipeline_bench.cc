@@ -1,10 +1,23 @@
-// Per-stage and whole-pipeline timings on synthetic frame pairs at 320x240 and 640x480.
+// Timings of the paper's stages on synthetic frame pairs at 320x240 and 640x480, and of every
+// method's whole pipeline on synthetic and DAVIS clips beside OpenCV MOG2 (method mog2).
 //   build/bench/movseg_bench [--benchmark_filter=...]
-// Each stage runs on the output of the previous ones for the same pair, exactly as in the
-// paper's pipeline (src/pipelines/paper.cc), so the stage times add up to the pipeline's.
+// Each paper stage runs on the output of the previous ones for the same pair, exactly as in the
+// paper's pipeline (src/pipelines/paper.cc), so the stage times add up to the pipeline's. The
+// whole-pipeline figures split a frame's time by stage from Diagnostics and count the minor page
+// faults per frame (memory the pipeline hands back and takes again).
+// DAVIS clips are read from $MOVSEG_DATA/davis2016 (default ../shared/data/davis2016 beside the
+// source tree) and left out when absent.
 #include <benchmark/benchmark.h>
+#include <sys/resource.h>
 
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
 #include <opencv2/core/utility.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <string>
+#include <vector>
 
 #include "classify/classify.h"
 #include "core/frame.h"
@@ -12,6 +25,7 @@
 #include "cut/graph_cut.h"
 #include "motion/camera_tracker.h"
 #include "motion/model.h"
+#include "movseg/fields.h"
 #include "movseg/segmenter.h"
 #include "synth/synth.h"
 
@@ -51,8 +65,8 @@ struct StageInputs {
                                        rescaleModel(step.model, image.seg_scale));
     const auto s = static_cast<float>(image.seg_scale / image.align_scale);
     for (const cv::Point2f& p : cur->alignment.features) points.push_back(p * s);
-    const FeatureClasses classes = classifyFeatures(
-        difference, image.seg_bgr, points, step.staticPoints(image.seg_scale), params);
+    const FeatureClasses classes = classifyFeatures(difference, image.seg_bgr, points,
+                                                    step.staticPoints(image.seg_scale), params);
     for (size_t i = 0; i < points.size(); ++i) {
       if (classes.labels[i] == FeatureLabel::kForeground) fg.push_back(points[i]);
       if (classes.labels[i] == FeatureLabel::kBackground) bg.push_back(points[i]);
@@ -82,7 +96,8 @@ void BM_Difference(benchmark::State& state) {
   const PreparedFrame& cur = in.cur->image;
   const cv::Matx33d model = rescaleModel(in.step.model, cur.seg_scale);
   for (auto _ : state) {
-    benchmark::DoNotOptimize(compensatedDifference(in.prev->image.seg_smooth, cur.seg_smooth, model));
+    benchmark::DoNotOptimize(
+        compensatedDifference(in.prev->image.seg_smooth, cur.seg_smooth, model));
   }
 }
 
@@ -120,13 +135,101 @@ void BM_GraphCut(benchmark::State& state) {
   state.counters["graph_nodes"] = nodes;
 }
 
-void BM_Process(benchmark::State& state) {
-  const Pair pair = synthPair(state);
-  Segmenter segmenter;
-  bool odd = false;
-  for (auto _ : state) {  // each call is a real pair (alternating direction)
-    benchmark::DoNotOptimize(segmenter.process(odd ? pair.prev : pair.cur));
-    odd = !odd;
+// Frames played forwards then backwards, so that every call is a real pair, the wrap included.
+struct Clip {
+  std::string name;
+  std::vector<cv::Mat> frames;
+  const cv::Mat& frame(size_t call) const {
+    const size_t period = 2 * frames.size() - 2;
+    const size_t i = call % period;
+    return frames[i < frames.size() ? i : period - i];
+  }
+};
+
+Clip synthClip(cv::Size size) {
+  SynthOptions options;
+  options.size = size;
+  options.frames = 12;
+  const SynthSequence sequence(options);
+  Clip clip{"synth/" + std::to_string(size.width) + "x" + std::to_string(size.height), {}};
+  for (int i = 0; i < options.frames; ++i) clip.frames.push_back(sequence.frame(i).frame);
+  return clip;
+}
+
+std::string davisRoot() {
+  const char* data = std::getenv("MOVSEG_DATA");
+  return (data != nullptr ? std::string(data)
+                          : std::string(MOVSEG_SOURCE_DIR) + "/../shared/data") +
+         "/davis2016";
+}
+
+// The first 12 frames of a DAVIS sequence, resized to `size` (empty: as stored); no frames when
+// the data is absent.
+Clip davisClip(const std::string& sequence, cv::Size size) {
+  Clip clip{"davis-" + sequence + "/" +
+                (size.empty() ? "native"
+                              : std::to_string(size.width) + "x" + std::to_string(size.height)),
+            {}};
+  std::vector<std::string> files;
+  std::error_code error;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(davisRoot() + "/" + sequence + "/frames", error)) {
+    files.push_back(entry.path().string());
+  }
+  std::sort(files.begin(), files.end());
+  files.resize(std::min<size_t>(files.size(), 12));
+  for (const std::string& file : files) {
+    cv::Mat frame = cv::imread(file);
+    if (frame.empty()) return {};
+    if (!size.empty()) cv::resize(frame, frame, size, 0, 0, cv::INTER_AREA);
+    clip.frames.push_back(frame);
+  }
+  return clip;
+}
+
+long minorFaults() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_minflt;
+}
+
+void processClip(benchmark::State& state, const Clip& clip, const std::string& method) {
+  Params params;
+  setParam(&params, "method", method);
+  Segmenter segmenter(params);
+  for (size_t i = 0; i < clip.frames.size(); ++i) segmenter.process(clip.frame(i));  // warm up
+  Diagnostics sum;
+  size_t call = 0;
+  const long faults = minorFaults();
+  for (auto _ : state) {
+    const Diagnostics d = segmenter.process(clip.frame(call++)).diagnostics;
+    sum.prepare_ms += d.prepare_ms;
+    sum.motion_ms += d.motion_ms;
+    sum.classify_ms += d.classify_ms;
+    sum.cut_ms += d.cut_ms;
+  }
+  const auto n = static_cast<double>(std::max<size_t>(call, 1));
+  state.counters["faults"] = static_cast<double>(minorFaults() - faults) / n;
+  state.counters["prepare_ms"] = sum.prepare_ms / n;
+  state.counters["motion_ms"] = sum.motion_ms / n;
+  state.counters["classify_ms"] = sum.classify_ms / n;
+  state.counters["cut_ms"] = sum.cut_ms / n;
+}
+
+// BM_Process/<clip>/<method> for every method on each clip that could be read.
+void registerPipelines() {
+  std::vector<Clip> clips = {synthClip({320, 240}), synthClip({640, 480})};
+  for (const cv::Size size : {cv::Size(320, 240), cv::Size()}) {
+    Clip clip = davisClip("dog", size);
+    if (!clip.frames.empty()) clips.push_back(std::move(clip));
+  }
+  for (const Clip& clip : clips) {
+    for (const std::string& method : enumNames<Method>()) {
+      benchmark::RegisterBenchmark(
+          ("BM_Process/" + clip.name + "/" + method).c_str(),
+          [clip, method](benchmark::State& state) { processClip(state, clip, method); })
+          ->Unit(benchmark::kMillisecond);
+    }
   }
 }
 
@@ -147,7 +250,6 @@ BENCHMARK(BM_Difference)->Apply(sizes);
 BENCHMARK(BM_Classify)->Apply(sizes);
 BENCHMARK(BM_GeodesicDistances)->Apply(sizes);
 BENCHMARK(BM_GraphCut)->Apply(cutVariants);
-BENCHMARK(BM_Process)->Apply(sizes);
 
 }  // namespace
 }  // namespace movseg
@@ -155,6 +257,7 @@ BENCHMARK(BM_Process)->Apply(sizes);
 int main(int argc, char** argv) {
   cv::setNumThreads(1);  // single-thread figures, as the CLI runs
   benchmark::Initialize(&argc, argv);
+  movseg::registerPipelines();
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

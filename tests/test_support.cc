@@ -164,6 +164,12 @@ cv::Mat texture(cv::Size size, std::uint64_t seed) {
   return out;
 }
 
+cv::Mat greyTexture(cv::Size size, std::uint64_t seed) {
+  cv::Mat grey;
+  cv::cvtColor(texture(size, seed), grey, cv::COLOR_BGR2GRAY);
+  return grey;
+}
+
 double cornerError(const cv::Matx33d& estimated, const cv::Matx33d& truth, cv::Size size) {
   double worst = 0;
   for (const cv::Vec3d& c : {cv::Vec3d(0, 0, 1), cv::Vec3d(size.width, 0, 1),

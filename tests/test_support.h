@@ -85,6 +85,9 @@ namespace movseg::test {
 // A richly textured BGR image (smoothed noise at several scales), the same for the same seed.
 cv::Mat texture(cv::Size size, std::uint64_t seed);
 
+// The same, in grey (CV_8U).
+cv::Mat greyTexture(cv::Size size, std::uint64_t seed);
+
 // Maximum distance between the images of the four corners of a w x h frame under two models.
 double cornerError(const cv::Matx33d& estimated, const cv::Matx33d& truth, cv::Size size);
 

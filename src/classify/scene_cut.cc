@@ -21,12 +21,16 @@ bool isSceneCut(const cv::Mat& difference, const cv::Matx33d& model) {
       if (inside[x] != 0) d.push_back(value[x]);
     }
   }
-  if (static_cast<double>(d.size()) < kSceneCutCoverage * static_cast<double>(difference.total())) {
-    return true;
-  }
+  const double covered_share =
+      static_cast<double>(d.size()) / static_cast<double>(difference.total());
+  if (d.empty()) return isSceneCut(covered_share, 0);
   const auto middle = d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2);
   std::nth_element(d.begin(), middle, d.end());
-  return *middle > kSceneCutMedianDifference;
+  return isSceneCut(covered_share, *middle);
+}
+
+bool isSceneCut(double covered_share, double median_difference) {
+  return covered_share < kSceneCutCoverage || median_difference > kSceneCutMedianDifference;
 }
 
 }  // namespace movseg

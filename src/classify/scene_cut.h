@@ -20,4 +20,8 @@ constexpr double kSceneCutMedianDifference = 1000;  // (8-bit levels)^2: an RMS 
 // median of d over what it covers exceeds kSceneCutMedianDifference.
 bool isSceneCut(const cv::Mat& difference, const cv::Matx33d& model);
 
+// The rule alone, from a pair's measurements: the share of the current frame the warped previous
+// frame covers, and the median of d over that part.
+bool isSceneCut(double covered_share, double median_difference);
+
 }  // namespace movseg

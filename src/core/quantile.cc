@@ -10,4 +10,15 @@ float quantile(std::vector<float>* values, double q) {
   return *k;
 }
 
+int median(const LevelHistogram& histogram) {
+  long count = 0;
+  for (const long n : histogram) count += n;
+  long seen = 0;
+  for (int level = 0; level < 256; ++level) {
+    seen += histogram[static_cast<size_t>(level)];
+    if (seen > count / 2) return level;
+  }
+  return 255;
+}
+
 }  // namespace movseg

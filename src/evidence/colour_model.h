@@ -26,11 +26,16 @@ class ColourModel {
   void reset();
 
  private:
-  int binOf(const cv::Vec3b& c) const;
+  // Inline: called for every pixel twice a frame.
+  int binOf(const cv::Vec3b& c) const {
+    const int bits = 8 - shift_;
+    return ((c[0] >> shift_) << (2 * bits)) | ((c[1] >> shift_) << bits) | (c[2] >> shift_);
+  }
 
   Params params_;
   int shift_;  // 8 - colour_bits: an 8-bit channel shifted right by this is its bin
   std::vector<float> foreground_, background_;  // normalised histograms; empty until learnt
+  std::vector<float> evidence_;                  // per bin: what addEvidence() adds
   std::vector<float> count_fg_, count_bg_;      // scratch of update()
 };
 

@@ -54,18 +54,12 @@ void patchError(const cv::Mat& grey, const cv::Mat& previous_grey, const cv::Mat
 
 // The median of an 8-bit image.
 int median8(const cv::Mat& image) {
-  int histogram[256] = {0};
+  LevelHistogram histogram{};
   for (int y = 0; y < image.rows; ++y) {
     const uchar* row = image.ptr<uchar>(y);
     for (int x = 0; x < image.cols; ++x) ++histogram[row[x]];
   }
-  const long half = static_cast<long>(image.total()) / 2;
-  long seen = 0;
-  for (int level = 0; level < 256; ++level) {
-    seen += histogram[level];
-    if (seen > half) return level;
-  }
-  return 255;
+  return median(histogram);
 }
 
 }  // namespace
@@ -104,7 +98,8 @@ void carryMask(const cv::Mat& previous_mask, const cv::Mat& flow_map, cv::Mat* c
             cv::BORDER_CONSTANT, cv::Scalar(0));
 }
 
-void addMemory(const cv::Mat& carried, const Params& params, cv::Mat* evidence) {  // log(p / (1 - p)) per 8-bit level of the carried mask, p softened towards one half.
+void addMemory(const cv::Mat& carried, const Params& params, cv::Mat* evidence) {
+  // log(p / (1 - p)) per 8-bit level of the carried mask, p softened towards one half.
   const auto floor = static_cast<float>(params.memory_floor);
   const auto weight = static_cast<float>(params.memory_weight);
   float logit[256];

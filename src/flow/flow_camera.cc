@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "core/quantile.h"
 #include "motion/estimators.h"
@@ -16,18 +17,23 @@ namespace {
 constexpr size_t kMinBackgroundSamples = 50;
 constexpr double kMinBackgroundShare = 0.3;
 
-struct GridSample {
-  cv::Point at;
-  float texture;
-};
+// Index v of a row or column of n pixels, reflected as OpenCV's default border (101) outside.
+int reflected(int v, int n) {
+  return v >= 0 && v < n ? v : cv::borderInterpolate(v, n, cv::BORDER_REFLECT_101);
+}
 
-std::vector<GridSample> gridSamples(const cv::Mat& texture, int step) {
-  std::vector<GridSample> samples;
-  for (int y = step / 2; y < texture.rows; y += step) {
-    const float* t = texture.ptr<float>(y);
-    for (int x = step / 2; x < texture.cols; x += step) samples.push_back({{x, y}, t[x]});
+// 3x3 Sobel derivatives of `grey` at `p`, borders reflected.
+cv::Vec2i sobelAt(const cv::Mat& grey, cv::Point p) {
+  const uchar* rows[3];
+  int column[3];
+  for (int k = 0; k < 3; ++k) {
+    rows[k] = grey.ptr<uchar>(reflected(p.y + k - 1, grey.rows));
+    column[k] = reflected(p.x + k - 1, grey.cols);
   }
-  return samples;
+  const auto at = [&](int j, int i) { return static_cast<int>(rows[j][column[i]]); };
+  const int dx = (at(0, 2) - at(0, 0)) + 2 * (at(1, 2) - at(1, 0)) + (at(2, 2) - at(2, 0));
+  const int dy = (at(2, 0) - at(0, 0)) + 2 * (at(2, 1) - at(0, 1)) + (at(2, 2) - at(0, 2));
+  return {dx, dy};
 }
 
 float textureQuantile(const std::vector<GridSample>& samples, double q) {
@@ -41,7 +47,8 @@ float textureQuantile(const std::vector<GridSample>& samples, double q) {
 // Residual motion of a point: from where the camera puts it, x, to where the flow does, y.
 float residualOf(const cv::Point2f& x, const cv::Point2f& y, const FlowCamera& camera) {
   if (camera.epipole) return static_cast<float>(EpipoleEstimator::offLine(x, y, *camera.epipole));
-  return static_cast<float>(std::hypot(y.x - x.x, y.y - x.y));
+  const float dx = y.x - x.x, dy = y.y - x.y;
+  return std::sqrt(dx * dx + dy * dy);  // flow distances cannot overflow: hypot's care not needed
 }
 
 // Off-plane samples must be at least this many, and this share of the background's, before
@@ -73,10 +80,40 @@ std::optional<cv::Vec3d> findEpipole(const FlowCamera& camera, cv::Size size,
 
 }  // namespace
 
-FlowCamera fitFlowCamera(const cv::Mat& flow, const cv::Mat& texture, const cv::Mat& moving,
-                         const Params& params, cv::RNG& rng) {
+float minEigenValueAt(const cv::Mat& grey, cv::Point p) {
+  constexpr int kWindow = 5;
+  // cornerMinEigenVal's normalisation: Sobel's weight (4), the window side, 8-bit range. The
+  // sums of products of integer derivatives are exact; the scale comes last.
+  constexpr double kScale = 1.0 / (4 * kWindow * 255.0);
+  std::int64_t xx = 0, xy = 0, yy = 0;
+  for (int j = -kWindow / 2; j <= kWindow / 2; ++j) {
+    const int y = reflected(p.y + j, grey.rows);
+    for (int i = -kWindow / 2; i <= kWindow / 2; ++i) {
+      const cv::Vec2i d = sobelAt(grey, {reflected(p.x + i, grey.cols), y});
+      xx += d[0] * d[0];
+      xy += d[0] * d[1];
+      yy += d[1] * d[1];
+    }
+  }
+  const double a = static_cast<double>(xx) * kScale * kScale / 2;
+  const double b = static_cast<double>(xy) * kScale * kScale;
+  const double c = static_cast<double>(yy) * kScale * kScale / 2;
+  return static_cast<float>((a + c) - std::sqrt((a - c) * (a - c) + b * b));
+}
+
+std::vector<GridSample> gridSamples(const cv::Mat& grey, int step) {
+  std::vector<GridSample> samples;
+  for (int y = step / 2; y < grey.rows; y += step) {
+    for (int x = step / 2; x < grey.cols; x += step) {
+      samples.push_back({{x, y}, minEigenValueAt(grey, {x, y})});
+    }
+  }
+  return samples;
+}
+
+FlowCamera fitFlowCamera(const cv::Mat& flow, const std::vector<GridSample>& grid,
+                         const cv::Mat& moving, const Params& params, cv::RNG& rng) {
   FlowCamera camera;
-  const std::vector<GridSample> grid = gridSamples(texture, params.flow_sample_step);
   const float flat = textureQuantile(grid, params.flow_texture_quantile);
   size_t background = 0;
   for (const GridSample& s : grid) {
@@ -88,7 +125,7 @@ FlowCamera fitFlowCamera(const cv::Mat& flow, const cv::Mat& texture, const cv::
     background += camera.background.back();
   }
   if (background < std::max<size_t>(kMinBackgroundSamples,
-                                     static_cast<size_t>(kMinBackgroundShare * camera.at.size()))) {
+                                    static_cast<size_t>(kMinBackgroundShare * camera.at.size()))) {
     std::fill(camera.background.begin(), camera.background.end(), 1);
   }
   if (params.static_camera) return camera;  // §4.1: the identity, nothing to fit
@@ -105,7 +142,8 @@ FlowCamera fitFlowCamera(const cv::Mat& flow, const cv::Mat& texture, const cv::
   const auto report = Ransac<HomographyEstimator>(options).estimate(x, y, flow.size(), rng);
   camera.fallback = !report.success;
   if (report.success) camera.model = report.model;
-  if (report.success && params.parallax) camera.epipole = findEpipole(camera, flow.size(), options, rng);
+  if (report.success && params.parallax)
+    camera.epipole = findEpipole(camera, flow.size(), options, rng);
   return camera;
 }
 

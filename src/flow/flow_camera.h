@@ -23,14 +23,29 @@ struct FlowCamera {
   std::optional<cv::Vec3d> epipole;
 };
 
-// Samples `flow` (CV_32FC2, current -> previous) every `step` pixels where `texture` (CV_32F,
-// e.g. the smaller eigenvalue of the structure tensor) is above its lower `texture_quantile`
-// among the samples — flat pixels carry no flow information — and fits a homography to those
-// not marked in `moving` (CV_8U, above 127; may be empty), unless that would leave too few.
-// With `params.static_camera` the model stays the identity. With `params.parallax`, then the epipole, when enough of those samples are off the plane
-// (more than twice the inlier distance) and most of them agree on one.
-FlowCamera fitFlowCamera(const cv::Mat& flow, const cv::Mat& texture, const cv::Mat& moving,
-                         const Params& params, cv::RNG& rng);
+// A pixel the camera is fitted at, and its texture.
+struct GridSample {
+  cv::Point at;
+  float texture;
+};
+
+// Every `step` pixels of `grey` (CV_8U, the current frame), with their minEigenValueAt. Needs the
+// frame alone, so it is made with the flow, before the previous mask is known.
+std::vector<GridSample> gridSamples(const cv::Mat& grey, int step);
+
+// Samples `flow` (CV_32FC2, current -> previous) at the `grid` samples whose texture is above
+// its lower `params.flow_texture_quantile` — flat pixels carry no flow information — and fits a
+// homography to those not marked in `moving` (CV_8U, above 127; may be empty), unless that would
+// leave too few. With `params.static_camera` the model stays the identity. With
+// `params.parallax`, then the epipole, when enough of those samples are off the plane (more than
+// twice the inlier distance) and most of them agree on one.
+FlowCamera fitFlowCamera(const cv::Mat& flow, const std::vector<GridSample>& grid,
+                         const cv::Mat& moving, const Params& params, cv::RNG& rng);
+
+// The smaller eigenvalue of the structure tensor over the 5x5 window at `p` of `grey` (CV_8U),
+// as cv::cornerMinEigenVal(grey, _, 5) gives it there: 3x3 Sobel gradients, reflected borders.
+// Computed at the samples alone, a sixtieth of the pixels at the default step.
+float minEigenValueAt(const cv::Mat& grey, cv::Point p);
 
 // The motion the camera does not explain at every pixel (CV_32F): |p + flow(p) - model(p)|,
 // or with an epipole only its part across the epipolar line through model(p); `camera_map`

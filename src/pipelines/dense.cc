@@ -8,6 +8,7 @@
 
 #include "classify/scene_cut.h"
 #include "core/frame.h"
+#include "core/quantile.h"
 #include "core/timing.h"
 #include "cut/evidence_cut.h"
 #include "evidence/colour_model.h"
@@ -21,21 +22,24 @@
 namespace movseg {
 namespace {
 
-// Phase 1: the frame at the working scale, its texture and its flow to the previous frame.
+// Phase 1: the frame at the working scale and its flow to the previous frame — all that does not
+// need the previous frame's mask, so that it runs while that mask is made (StreamSegmenter).
 struct DenseAnalysis : Analysis {
   cv::Mat bgr;      // segmentation scale
   cv::Mat grey;
-  cv::Mat texture;  // smaller eigenvalue of the structure tensor
+  std::vector<GridSample> samples;  // where the camera is fitted
   cv::Mat flow;     // to the previous frame; empty on a first frame
+  cv::Mat flow_map;  // where the flow takes each pixel (flowMap)
   double scale = 1;  // bgr = the frame scaled by this
   cv::Size input_size;
   double prepare_ms = 0, flow_ms = 0;
 };
 
 // The last segmented frame at the working scale, for the next pair (the analysis holding it is
-// reused for a later frame).
+// reused for a later frame), and the one before it, warped onto it only when the user asks for
+// the compensated previous frame.
 struct PreviousFrame {
-  cv::Mat bgr, grey;
+  cv::Mat bgr, grey, before_bgr;
 };
 
 // Copies the frame's images into `previous` on every way out of segment().
@@ -43,10 +47,33 @@ struct Remember {
   const DenseAnalysis& frame;
   PreviousFrame* previous;
   ~Remember() {
+    cv::swap(previous->bgr, previous->before_bgr);
     frame.bgr.copyTo(previous->bgr);
     frame.grey.copyTo(previous->grey);
   }
 };
+
+// A scene cut (classify/scene_cut.h) judged on every other pixel of every other row: eq. (4)'s d
+// between the frame and the previous one at the pixel nearest to where the camera puts it. A
+// median over a quarter of the pixels decides as well as over all; warping the whole frame for
+// it would cost more than the rest of the pair's evidence. `d` is scratch.
+bool isSceneCutUnderCamera(const cv::Mat& bgr, const cv::Mat& previous_bgr,
+                           const cv::Mat& camera_map, std::vector<float>* d) {
+  d->clear();
+  long samples = 0;
+  for (int y = 0; y < bgr.rows; y += 2) {
+    const auto* at = camera_map.ptr<cv::Vec2f>(y);
+    const auto* colour = bgr.ptr<cv::Vec3b>(y);
+    for (int x = 0; x < bgr.cols; x += 2, ++samples) {
+      const cv::Point p(cvRound(at[x][0]), cvRound(at[x][1]));
+      if (p.x < 0 || p.y < 0 || p.x >= bgr.cols || p.y >= bgr.rows) continue;
+      const cv::Vec3i step = cv::Vec3i(colour[x]) - cv::Vec3i(previous_bgr.at<cv::Vec3b>(p));
+      d->push_back(static_cast<float>(step.dot(step)) / 3.f);
+    }
+  }
+  const double covered_share = static_cast<double>(d->size()) / static_cast<double>(samples);
+  return isSceneCut(covered_share, d->empty() ? 0.0 : quantile(d, 0.5));
+}
 
 // The residuals at the samples the photometric check does not confirm as moving (less than
 // half confirmed): the background's, whatever the movers' share of the frame, so that the
@@ -78,11 +105,12 @@ class DensePipeline : public Pipeline {
     a.input_size = bgr.size();
     downscale(bgr, size, &halved_, &a.bgr);
     cv::cvtColor(a.bgr, a.grey, cv::COLOR_BGR2GRAY);
-    cv::cornerMinEigenVal(a.grey, a.texture, 5);
+    a.samples = gridSamples(a.grey, params_.flow_sample_step);
     a.prepare_ms = millisecondsSince(start);
     start = Clock::now();
     if (a.first_frame) flow_.reset();
     flow_.next(a.grey, &a.flow);
+    if (!a.flow.empty()) flowMap(a.flow, &a.flow_map);
     a.flow_ms = millisecondsSince(start);
   }
 
@@ -92,26 +120,25 @@ class DensePipeline : public Pipeline {
     diag.prepare_ms = a.prepare_ms;
     diag.motion_ms = a.flow_ms;
     const Remember remember{a, &previous_};
-    compensated_.release();
+    has_pair_ = false;
     input_size_ = a.input_size;
     if (a.first_frame || a.flow.empty()) return forget(a.bgr.size());
     Clock::time_point start = Clock::now();
     cv::Mat carried, evidence;
-    flowMap(a.flow, &flow_map_);
-    if (!mask_.empty()) carryMask(mask_, flow_map_, &carried);
-    const FlowCamera camera = fitFlowCamera(a.flow, a.texture, carried, params_, rng_);
+    if (!mask_.empty()) carryMask(mask_, a.flow_map, &carried);
+    const FlowCamera camera = fitFlowCamera(a.flow, a.samples, carried, params_, rng_);
     cameraMap(camera.model, a.grey.size(), &camera_map_);
     residualMotion(a.flow, camera_map_, camera, &residual_);
     // The fit maps current to previous working pixels; eq. (4) warps previous to current.
-    const cv::Matx33d to_current = camera.model.inv();
-    compensated_ = warpPrevious(previous_.bgr, a.bgr, to_current);
+    to_current_ = camera.model.inv();
+    has_pair_ = true;
     diag.motion_ms += millisecondsSince(start);
     describe(camera, a.scale, &diag);
 
     start = Clock::now();
-    diag.scene_cut = isSceneCut(differenceToWarped(a.bgr, compensated_), to_current);
+    diag.scene_cut = isSceneCutUnderCamera(a.bgr, previous_.bgr, camera_map_, &scene_cut_scratch_);
     if (diag.scene_cut) return forget(a.bgr.size());
-    photometric_.confirm(a.grey, previous_.grey, flow_map_, camera_map_, params_, &confirmation_);
+    photometric_.confirm(a.grey, previous_.grey, a.flow_map, camera_map_, params_, &confirmation_);
     const float scale = residualScale(unconfirmedResiduals(camera, confirmation_), params_);
     diag.residual_scale = scale;
     motionEvidence(residual_, scale, params_, &evidence);
@@ -145,9 +172,10 @@ class DensePipeline : public Pipeline {
   void reset() override { flow_.reset(); }
 
   cv::Mat compensatedPreviousFrame() const override {
-    if (compensated_.empty()) return cv::Mat();
+    if (!has_pair_) return cv::Mat();
     cv::Mat full;
-    cv::resize(compensated_, full, input_size_, 0, 0, cv::INTER_LINEAR);
+    cv::resize(warpPrevious(previous_.before_bgr, previous_.bgr, to_current_), full, input_size_, 0,
+               0, cv::INTER_LINEAR);
     return full;
   }
 
@@ -176,10 +204,12 @@ class DensePipeline : public Pipeline {
   cv::RNG rng_;
   cv::Mat mask_;  // the last frame's, at the working scale
   cv::Mat residual_, confirmation_;
-  cv::Mat flow_map_, camera_map_;
+  cv::Mat camera_map_;
   PhotometricCheck photometric_;
   PreviousFrame previous_;
-  cv::Mat compensated_;  // the pair's previous frame warped onto the current one (eq. 4's I')
+  std::vector<float> scene_cut_scratch_;
+  bool has_pair_ = false;    // the last frame had a camera model: eq. (4)'s I' can be made
+  cv::Matx33d to_current_;  // that model, previous to current working pixels
   cv::Size input_size_;
   cv::Mat halved_;  // scratch of downscale()
 };

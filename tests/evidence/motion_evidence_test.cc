@@ -9,12 +9,6 @@
 namespace movseg {
 namespace {
 
-cv::Mat greyTexture(cv::Size size, std::uint64_t seed) {
-  cv::Mat grey;
-  cv::cvtColor(test::texture(size, seed), grey, cv::COLOR_BGR2GRAY);
-  return grey;
-}
-
 cv::Mat uniformFlow(cv::Size size, cv::Vec2f motion) {
   return cv::Mat(size, CV_32FC2, cv::Scalar(motion[0], motion[1]));
 }
@@ -23,8 +17,8 @@ cv::Mat uniformFlow(cv::Size size, cv::Vec2f motion) {
 // square is confirmed, the background is not.
 TEST(PhotometricCheck, ConfirmsAMovedTexturedSquareAndNotTheStillBackground) {
   const cv::Size size(96, 96);
-  const cv::Mat background = greyTexture(size, 1);
-  const cv::Mat object = greyTexture(size, 2);
+  const cv::Mat background = test::greyTexture(size, 1);
+  const cv::Mat object = test::greyTexture(size, 2);
   const cv::Rect before(30, 30, 30, 30), after(33, 30, 30, 30);
   cv::Mat previous = background.clone(), current = background.clone();
   object(before).copyTo(previous(before));

@@ -1,0 +1,61 @@
+#include "flow/flow_camera.h"
+
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include "motion/model.h"
+#include "test_support.h"
+
+namespace movseg {
+namespace {
+
+// The texture measured at the samples alone is OpenCV's, inside the frame and on its borders
+// and corners, where both reflect the image.
+TEST(FlowCamera, TextureAtAPixelIsCornerMinEigenValsThere) {
+  const cv::Mat grey = test::greyTexture({61, 47}, 3);
+  cv::Mat expected;
+  cv::cornerMinEigenVal(grey, expected, 5);
+  double largest = 0;
+  cv::minMaxLoc(expected, nullptr, &largest);
+  ASSERT_GT(largest, 1e-4);
+  for (const cv::Point p : {cv::Point(30, 20), cv::Point(0, 0), cv::Point(60, 46), cv::Point(1, 45),
+                            cv::Point(59, 0), cv::Point(7, 13)}) {
+    EXPECT_NEAR(minEigenValueAt(grey, p), expected.at<float>(p), 1e-5 * largest) << p;
+  }
+}
+
+// A camera that zooms and pans, as a flow field (current -> previous), and a square that moves
+// on its own, marked as moving: the fit finds the camera, the residual is the square's motion
+// there and nothing elsewhere.
+TEST(FlowCamera, FitsTheCameraAroundAMarkedMoverAndLeavesItsMotionAsResidual) {
+  const cv::Size size(160, 120);
+  const cv::Matx33d camera(1.02, 0.01, -2.5, -0.01, 1.02, 1.5, 0, 0, 1);
+  const cv::Rect mover(60, 40, 30, 30);
+  cv::Mat flow(size, CV_32FC2), moving = cv::Mat::zeros(size, CV_8U);
+  for (int y = 0; y < size.height; ++y) {
+    for (int x = 0; x < size.width; ++x) {
+      const cv::Point2f p(static_cast<float>(x), static_cast<float>(y));
+      const cv::Point2f to =
+          applyModel(camera, p) + (mover.contains({x, y}) ? cv::Point2f(4, -3) : cv::Point2f());
+      flow.at<cv::Vec2f>(y, x) = cv::Vec2f(to.x - p.x, to.y - p.y);
+    }
+  }
+  moving(mover).setTo(255);
+  cv::RNG rng(1);
+  const Params params;
+  const std::vector<GridSample> samples =
+      gridSamples(test::greyTexture(size, 4), params.flow_sample_step);
+  const FlowCamera fit = fitFlowCamera(flow, samples, moving, params, rng);
+  ASSERT_FALSE(fit.fallback);
+  EXPECT_LT(cv::norm(cv::Matx33d(fit.model * (1.0 / fit.model(2, 2))) - camera), 1e-3);
+  cv::Mat camera_map, residual;
+  cameraMap(fit.model, size, &camera_map);
+  residualMotion(flow, camera_map, fit, &residual);
+  EXPECT_NEAR(residual.at<float>(55, 75), 5.0, 0.01);  // |(4, -3)|
+  EXPECT_NEAR(residual.at<float>(10, 10), 0.0, 0.01);
+  EXPECT_NEAR(residual.at<float>(110, 150), 0.0, 0.01);
+}
+
+}  // namespace
+}  // namespace movseg
