@@ -23,6 +23,7 @@
 #include "commands.h"
 #include "concurrent.h"
 #include "core/frame.h"
+#include "core/worker.h"
 #include "io/atomic_write.h"
 #include "io/frame_source.h"
 #include "io/overlay.h"
@@ -375,12 +376,16 @@ struct PushedFrame {
 };
 
 // Each pushed frame's result, in order, to the run's outputs (the mask at the frame's size, the
-// overlay, the live window) and its summary.
+// overlay, the live window) and its summary. With `behind`, the files are written on a thread of
+// their own while the next frame is cut: encoding the PNGs and the file system's work were a
+// third of the calling thread's time on two threads. A failed write is then thrown by the next
+// write() or by finish().
 class ResultWriter {
  public:
   ResultWriter(const SegmentOptions& options, RunOutputs* outputs, SegmentSummary* summary,
-               Progress* progress, LiveWindow* window)
-      : options_(options), outputs_(outputs), summary_(summary), progress_(progress), window_(window) {}
+               Progress* progress, LiveWindow* window, bool behind)
+      : options_(options), outputs_(outputs), summary_(summary), progress_(progress),
+        window_(window), behind_(behind ? std::make_unique<Worker>() : nullptr) {}
 
   bool drawsOverlay() const { return !options_.overlay.empty() || options_.show; }
 
@@ -390,9 +395,10 @@ class ResultWriter {
   // closed the live window.
   bool write(std::optional<Result> given) {
     if (!given) return true;
-    Result& result = *given;
-    const PushedFrame pushed = std::move(waiting_.front());
+    Files files{std::move(waiting_.front()), std::move(*given), cv::Mat()};
     waiting_.pop_front();
+    const PushedFrame& pushed = files.pushed;
+    Result& result = files.result;
     if (result.mask.size() != pushed.size) {
       cv::resize(result.mask, result.mask, pushed.size, 0, 0, cv::INTER_NEAREST);
     }
@@ -400,24 +406,49 @@ class ResultWriter {
     summary_->resets += result.diagnostics.reset;
     summary_->motion_fallbacks += result.diagnostics.motion_fallback;
     summary_->scene_cuts += result.diagnostics.scene_cut;
-    cv::Mat picture;
     if (drawsOverlay()) {
-      picture = drawOverlay(pushed.frame, result, hudLine(pushed.index, result.diagnostics),
-                            options_.feature_dots);
+      files.picture = drawOverlay(pushed.frame, result, hudLine(pushed.index, result.diagnostics),
+                                  options_.feature_dots);
     }
-    outputs_->write(pushed.index, result, picture, pushed.source, pushed.new_errors);
+    const cv::Mat picture = files.picture;
+    writeFiles(std::move(files));
     ++summary_->frames;
     progress_->update(summary_->frames);
     return window_->show(picture);
   }
 
+  // Waits for the files being written, if any; throws when their write failed.
+  void finish() {
+    if (behind_) behind_->wait();
+  }
+
  private:
+  struct Files {
+    PushedFrame pushed;
+    Result result;
+    cv::Mat picture;  // the overlay, empty when none is wanted
+  };
+
+  void writeFiles(Files files) {
+    if (!behind_) return writeNow(files);
+    behind_->wait();  // the previous frame's first, and its failure
+    files_ = std::move(files);
+    behind_->start([this] { writeNow(files_); });
+  }
+
+  void writeNow(const Files& files) {
+    const PushedFrame& pushed = files.pushed;
+    outputs_->write(pushed.index, files.result, files.picture, pushed.source, pushed.new_errors);
+  }
+
   const SegmentOptions& options_;
   RunOutputs* outputs_;
   SegmentSummary* summary_;
   Progress* progress_;
   LiveWindow* window_;
   std::deque<PushedFrame> waiting_;  // pushed, oldest first, their results not yet written
+  Files files_;                      // the worker's between start() and wait()
+  std::unique_ptr<Worker> behind_;   // last: destroyed first, it ends the write in flight
 };
 
 }  // namespace
@@ -439,7 +470,6 @@ SegmentSummary runSegmentation(const SegmentOptions& options) {
   StopOnSignal stop_on_signal;
   std::unique_ptr<FrameSource> source =
       FrameSource::open(options.input, DecoderLimits{options.timeout, &g_stop});
-  // Decoding is a third of a frame's work on real video: on two threads it is done ahead too.
   if (options.threads > 1) source = readAhead(std::move(source));
   claimOutputFolder(options);
   RunOutputs outputs(options, source->report().fps);
@@ -448,7 +478,8 @@ SegmentSummary runSegmentation(const SegmentOptions& options) {
   int total = source->report().expected_frames;
   if (options.max_frames >= 0 && (total < 0 || total > options.max_frames)) total = options.max_frames;
   Progress progress("segment", total, options.quiet);
-  ResultWriter writer(options, &outputs, &summary, &progress, &window);
+  // On two threads the frames are also read ahead and their files written behind.
+  ResultWriter writer(options, &outputs, &summary, &progress, &window, options.threads > 1);
   cv::Mat frame;
   int decode_errors = 0;
   // The next frame into `frame`, and the decode errors reported while it was read; throws for a
@@ -494,6 +525,7 @@ SegmentSummary runSegmentation(const SegmentOptions& options) {
     if (!writer.write(std::move(result))) break;
   }
   writer.write(checked([&] { return segmenter.flush(); }));  // the last frame's, on two threads
+  writer.finish();
   if (input_failure) std::rethrow_exception(input_failure);
   summary.interrupted = g_stop;
   progress.finish();
