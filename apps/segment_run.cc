@@ -366,11 +366,74 @@ class RunOutputs {
   bool finished_ = false;
 };
 
+// A frame as read, ready for the segmenter, and what its source said when it was read.
+struct InputFrame {
+  bool got = false;    // false at the end of the input
+  cv::Mat frame;       // as decoded
+  cv::Mat input;       // what the segmenter takes: `frame` resized (bench --size), or `frame`
+  SourceReport report;
+  std::string name;    // the source's describe()
+};
+
+// The source's frames, resized for the segmenter. With `ahead`, each is read and resized on a
+// thread of its own while the caller works on the frame before: decoding (and bench's resize)
+// were a third of the calling thread's time on two threads. A read's exception is thrown by the
+// read() that would have returned its frame.
+class FrameReader {
+ public:
+  // The source is not touched by the caller while the reader lives (it reads ahead).
+  FrameReader(FrameSource* source, cv::Size resize, bool ahead)
+      : source_(source), resize_(resize), ahead_(ahead ? std::make_unique<Worker>() : nullptr) {
+    if (ahead_) readAhead();
+  }
+
+  // The next frame; valid until the next call. After the end, the end again.
+  const InputFrame& read() {
+    if (!ahead_) {
+      readInto(&current_);
+      return current_;
+    }
+    if (!reading_) return current_;  // the end, or a read that failed
+    reading_ = false;
+    try {
+      ahead_->wait();
+    } catch (...) {
+      current_.got = false;  // nothing more to read
+      throw;
+    }
+    // Swapped, not copied: the next read refills the frame the caller is now done with.
+    std::swap(current_, next_);
+    if (current_.got) readAhead();
+    return current_;
+  }
+
+  // The frame read() returned last, for messages.
+  const std::string& describe() const { return current_.name; }
+
+ private:
+  void readInto(InputFrame* frame) {
+    frame->got = source_->read(&frame->frame);
+    frame->report = source_->report();
+    frame->name = source_->describe();
+    if (frame->got) frame->input = resizedTo(frame->frame, resize_);
+  }
+  void readAhead() {
+    reading_ = true;
+    ahead_->start([this] { readInto(&next_); });
+  }
+
+  FrameSource* source_;
+  cv::Size resize_;
+  InputFrame current_, next_;      // next_ is the worker's between start() and wait()
+  bool reading_ = false;           // a read is in flight
+  std::unique_ptr<Worker> ahead_;  // last: destroyed first, it ends the read in flight
+};
+
 // A frame given to the segmenter, waiting for its result: one push later on two threads.
 struct PushedFrame {
   int index = 0;
   cv::Size size;          // the frame's own: the mask is scaled back to it
-  cv::Mat frame;          // kept only when an overlay is drawn (the source reuses its buffer)
+  cv::Mat frame;          // kept only when an overlay is drawn
   SourceReport source;    // as it was when the frame was read
   int new_errors = 0;     // decode errors reported while it was read
 };
@@ -470,35 +533,35 @@ SegmentSummary runSegmentation(const SegmentOptions& options) {
   StopOnSignal stop_on_signal;
   std::unique_ptr<FrameSource> source =
       FrameSource::open(options.input, DecoderLimits{options.timeout, &g_stop});
-  if (options.threads > 1) source = readAhead(std::move(source));
+  const SourceReport opened = source->report();
   claimOutputFolder(options);
-  RunOutputs outputs(options, source->report().fps);
+  RunOutputs outputs(options, opened.fps);
 
   SegmentSummary summary;
-  int total = source->report().expected_frames;
+  int total = opened.expected_frames;
   if (options.max_frames >= 0 && (total < 0 || total > options.max_frames)) total = options.max_frames;
   Progress progress("segment", total, options.quiet);
   // On two threads the frames are also read ahead and their files written behind.
   ResultWriter writer(options, &outputs, &summary, &progress, &window, options.threads > 1);
-  cv::Mat frame;
+  FrameReader reader(source.get(), options.resize, options.threads > 1);
   int decode_errors = 0;
-  // The next frame into `frame`, and the decode errors reported while it was read; throws for a
-  // frame that cannot be read, or a decode error with stop_on_decode_error.
-  const auto readFrame = [&](int* new_errors) {
-    const bool got = source->read(&frame);
-    summary.source = source->report();
+  // The next frame, and the decode errors reported while it was read; throws for a frame that
+  // cannot be read, or a decode error with stop_on_decode_error.
+  const auto readFrame = [&](int* new_errors) -> const InputFrame& {
+    const InputFrame& read = reader.read();
+    summary.source = read.report;
     *new_errors = summary.source.decode_errors - decode_errors;
     decode_errors = summary.source.decode_errors;
     if (*new_errors > 0 && options.stop_on_decode_error) {
-      throw std::runtime_error(source->describe() + ": decode error: " + summary.source.last_error);
+      throw std::runtime_error(read.name + ": decode error: " + summary.source.last_error);
     }
-    return got;
+    return read;
   };
   const auto checked = [&](auto step) {
     try {
       return step();
     } catch (const std::exception& e) {
-      throw std::runtime_error(source->describe() + ": " + e.what());
+      throw std::runtime_error(reader.describe() + ": " + e.what());
     }
   };
   const auto start = std::chrono::steady_clock::now();
@@ -511,16 +574,18 @@ SegmentSummary runSegmentation(const SegmentOptions& options) {
     }
     if (g_stop) break;
     int new_errors = 0;
+    const InputFrame* read = nullptr;
     try {
-      if (!readFrame(&new_errors)) break;
+      read = &readFrame(&new_errors);
     } catch (const std::exception&) {
       input_failure = std::current_exception();
       break;
     }
-    writer.expect({pushed++, frame.size(), writer.drawsOverlay() ? frame.clone() : cv::Mat(),
-                   summary.source, new_errors});
-    std::optional<Result> result =
-        checked([&] { return segmenter.push(resizedTo(frame, options.resize)); });
+    if (!read->got) break;
+    // The frame is kept for its overlay: the reader refills its buffer before the result comes.
+    const cv::Mat kept = writer.drawsOverlay() ? read->frame.clone() : cv::Mat();
+    writer.expect({pushed++, read->frame.size(), kept, summary.source, new_errors});
+    std::optional<Result> result = checked([&] { return segmenter.push(read->input); });
     if (options.threads == 1) result = checked([&] { return segmenter.flush(); });
     if (!writer.write(std::move(result))) break;
   }

@@ -8,8 +8,6 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 
-#include "core/worker.h"
-
 namespace movseg {
 namespace fs = std::filesystem;
 namespace {
@@ -171,61 +169,7 @@ std::vector<std::string> folderImages(const std::string& folder) {
   return files;
 }
 
-// What a read gave, and what the source said then.
-struct ReadOutcome {
-  bool got = false;
-  SourceReport report;
-  std::string name;
-};
-
-class ReadAheadSource : public FrameSource {
- public:
-  explicit ReadAheadSource(std::unique_ptr<FrameSource> source) : source_(std::move(source)) {
-    current_ = {false, source_->report(), source_->describe()};  // what is asked before a read
-    readNext();
-  }
-
-  bool read(cv::Mat* frame) override {
-    if (ended_) return false;
-    try {
-      worker_.wait();
-    } catch (...) {
-      ended_ = true;
-      throw;
-    }
-    // Swapped, not shared: the next read fills the caller's previous frame, which the caller
-    // is done with, as when it reads from the source itself.
-    std::swap(*frame, next_frame_);
-    current_ = next_;
-    ended_ = !current_.got;
-    if (!ended_) readNext();
-    return current_.got;
-  }
-  SourceReport report() const override { return current_.report; }
-  std::string describe() const override { return current_.name; }
-
- private:
-  void readNext() {
-    worker_.start([this] {
-      next_.got = source_->read(&next_frame_);
-      next_.report = source_->report();
-      next_.name = source_->describe();
-    });
-  }
-
-  std::unique_ptr<FrameSource> source_;
-  ReadOutcome current_;      // of the frame read() returned last
-  ReadOutcome next_;         // the worker's between start() and wait(), as next_frame_
-  cv::Mat next_frame_;
-  bool ended_ = false;
-  Worker worker_;  // last: destroyed first, it ends the read in flight while its members live
-};
-
 }  // namespace
-
-std::unique_ptr<FrameSource> readAhead(std::unique_ptr<FrameSource> source) {
-  return std::make_unique<ReadAheadSource>(std::move(source));
-}
 
 std::vector<std::string> listImages(const std::string& folder) {
   std::vector<std::string> files;

@@ -40,11 +40,6 @@ class FrameSource {
                                            const DecoderLimits& limits = {});
 };
 
-// `source` read one frame ahead on a thread of its own: the next frame decodes while the caller
-// works on this one. Each frame comes with the report() and describe() its source gave when it
-// was read; a read's exception is thrown by the read() that would have returned its frame.
-std::unique_ptr<FrameSource> readAhead(std::unique_ptr<FrameSource> source);
-
 // The file or folder on disk that `input` reads (for a pattern, its folder); "" for a camera or
 // a URL. Outputs must stay out of it.
 std::string inputPath(const std::string& input);
