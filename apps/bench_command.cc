@@ -266,13 +266,16 @@ void runBench(const BenchOptions& options) {
   }
   std::vector<BenchRow> rows = benchAll(sequences, methods, options, scratch);
   std::optional<Throughput> throughput;
-  if (options.threads > 1) throughput = measureThroughput(sequences, methods.front(), options, scratch);
+  if (options.threads > 1) {
+    throughput = measureThroughput(sequences, methods.front(), options, scratch);
+  }
   fs::remove_all(scratch);
   std::vector<BenchRow> means = meanRows(rows, methods);
   compareWithReference(&rows);
   compareWithReference(&means);
-  const std::string threads = options.threads == 1 ? "one thread"
-                              : std::to_string(options.threads) + " runs at a time, one thread each";
+  const std::string threads =
+      options.threads == 1 ? "one thread"
+                           : std::to_string(options.threads) + " runs at a time, one thread each";
   const std::string setting =
       "movseg bench on " + cpuModel() + ", " + threads +
       (options.size.empty() ? ", native size" : ", frames resized to " + options.size);

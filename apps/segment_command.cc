@@ -1,9 +1,12 @@
 // movseg segment INPUT... -o OUTDIR [--threads N] [--overlay [PATH]] [--show] [--debug] ...
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
 #include <memory>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "commands.h"
 #include "params_options.h"
@@ -37,9 +40,10 @@ void segmentOne(SegmentOptions options, int threads) {
 
 // Several inputs: `threads` at a time, each on one thread, into OUTDIR/<name>/. A failing input
 // reports its error and the others go on; the exit status says whether any failed.
-void segmentMany(const SegmentOptions& shared, const std::vector<std::string>& inputs, int threads) {
+void segmentMany(const SegmentOptions& shared, const std::vector<std::string>& inputs,
+                 int threads) {
   std::vector<SegmentOptions> runs = perInputRuns(shared, inputs);
-  for (SegmentOptions& run : runs) run.quiet = true;  // bars of runs at once would overwrite each other
+  for (SegmentOptions& run : runs) run.quiet = true;  // bars of runs at once would mix
   int failed = 0, frames = 0;
   bool interrupted = false;
   runSegmentations(runs, threads, [&](size_t i, const RunOutcome& outcome) {

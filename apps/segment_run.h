@@ -30,8 +30,9 @@ struct SegmentOptions {
   bool quiet = false;         // no progress, no summary line
   cv::Size resize;            // non-empty: frames are resized to this before segmentation and
                               // the masks back to the frame's own size (bench --size)
-  int threads = 1;            // the stream's: 1, or 2 to segment a frame while the next one is
-                              // analysed (StreamSegmenter; the same masks)
+  int threads = 1;            // the stream's: 1, or 2 to cut a frame while the next one is
+                              // analysed (StreamSegmenter), the one after read and the one
+                              // before written, each on a thread of its own (the same files)
 };
 
 struct SegmentSummary {
