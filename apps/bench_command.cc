@@ -1,13 +1,18 @@
-// movseg bench DATA [--methods dense,paper,diff,mog2,mog2-comp] [--size WxH] [--json FILE] [--html FILE]
+// movseg bench DATA [--methods dense,paper,diff,mog2,mog2-comp] [--size WxH] [--threads N]
+//                   [--json FILE] [--html FILE]
 // Every method on every sequence of DATA: accuracy against the ground truth and speed, in one
-// table (the README's tables come from here).
+// table (the README's tables come from here); with --threads, what threads add to throughput.
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <mutex>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <sys/resource.h>
@@ -16,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "concurrent.h"
 #include "eval/dataset.h"
 #include "html_report.h"
 #include "io/atomic_write.h"
@@ -36,6 +42,7 @@ struct BenchOptions {
   std::string json_file;
   std::string html_file;
   Params params;
+  int threads = 1;  // runs at a time
 };
 
 // Timed in every run beside the methods asked for: OpenCV's MOG2, the speed users compare with.
@@ -50,9 +57,10 @@ struct BenchRow {
   ReportRun report;             // with --html only
 };
 
+// The calling thread's: runs at once each count their own.
 long minorFaults() {
   rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
+  getrusage(RUSAGE_THREAD, &usage);
   return usage.ru_minflt;
 }
 
@@ -78,8 +86,9 @@ std::string cpuModel() {
   return "unknown CPU";
 }
 
-BenchRow benchOne(const GtSequence& sequence, const std::string& method, const BenchOptions& options,
-                  const std::string& scratch) {
+// A run of `method` on `sequence`, its masks written under `scratch`.
+SegmentOptions runOptions(const GtSequence& sequence, const std::string& method,
+                          const BenchOptions& options, const std::string& scratch) {
   SegmentOptions segment;
   segment.input = sequence.frames_dir;
   segment.output_dir = (fs::path(scratch) / method / sequence.name).string();
@@ -87,6 +96,12 @@ BenchRow benchOne(const GtSequence& sequence, const std::string& method, const B
   setParam(&segment.params, "method", method);
   segment.quiet = true;
   segment.resize = parseSize(options.size);
+  return segment;
+}
+
+BenchRow benchOne(const GtSequence& sequence, const std::string& method, const BenchOptions& options,
+                  const std::string& scratch) {
+  const SegmentOptions segment = runOptions(sequence, method, options, scratch);
   const long faults = minorFaults();
   const SegmentSummary summary = runSegmentation(segment);
   const double faults_per_frame =
@@ -159,6 +174,82 @@ nlohmann::json rowsJson(const std::vector<BenchRow>& rows) {
   return out;
 }
 
+// What threads add: fps of whole runs of one method over every sequence (frames read,
+// segmented, masks written), one stream on one thread and on two, and several streams at once.
+struct Throughput {
+  std::string method;
+  int streams = 0;  // at once
+  double one_thread = 0, two_threads = 0, at_once = 0;
+};
+
+// Frames per second of `method` over every sequence, `streams` at a time, each stream on
+// `stream_threads`.
+double framesPerSecond(const std::vector<GtSequence>& sequences, const std::string& method,
+                       const BenchOptions& options, const std::string& scratch, int streams,
+                       int stream_threads) {
+  std::atomic<int> frames{0};
+  const auto start = std::chrono::steady_clock::now();
+  runConcurrently(sequences.size(), streams, [&](size_t i) {
+    SegmentOptions segment = runOptions(sequences[i], method, options, scratch);
+    segment.threads = stream_threads;
+    frames += runSegmentation(segment).frames;
+  });
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  fs::remove_all(fs::path(scratch) / method);  // untimed, and the next pass writes there again
+  return frames / seconds;
+}
+
+// Each configuration's best of kThroughputRounds, the rounds interleaved: on a shared machine
+// another job's burst slows one round of each configuration rather than one configuration.
+constexpr int kThroughputRounds = 3;
+
+Throughput measureThroughput(const std::vector<GtSequence>& sequences, const std::string& method,
+                             const BenchOptions& options, const std::string& scratch) {
+  Throughput t;
+  t.method = method;
+  t.streams = static_cast<int>(std::min<size_t>(options.threads, sequences.size()));
+  const auto fps = [&](int streams, int stream_threads) {
+    return framesPerSecond(sequences, method, options, scratch, streams, stream_threads);
+  };
+  for (int round = 0; round < kThroughputRounds; ++round) {
+    t.one_thread = std::max(t.one_thread, fps(1, 1));
+    t.two_threads = std::max(t.two_threads, fps(1, 2));
+    t.at_once = std::max(t.at_once, fps(t.streams, 1));
+  }
+  return t;
+}
+
+std::string formatThroughput(const Throughput& t) {
+  char text[600];
+  std::snprintf(text, sizeof text,
+                "Throughput of %s, whole runs over every sequence (frames read, segmented, masks "
+                "written), frames per second, best of %d rounds:\n"
+                "  one stream on 1 thread   %8.1f\n"
+                "  one stream on 2 threads  %8.1f  %.2fx 1 thread (target 1.6x)\n"
+                "  %d streams at once        %8.1f  %.2fx one at a time (target 1.8x for 2)\n",
+                t.method.c_str(), kThroughputRounds, t.one_thread, t.two_threads,
+                t.two_threads / t.one_thread, t.streams, t.at_once, t.at_once / t.one_thread);
+  return text;
+}
+
+// Every method on every sequence, options.threads runs at a time, in the table's order.
+std::vector<BenchRow> benchAll(const std::vector<GtSequence>& sequences,
+                               const std::vector<std::string>& methods, const BenchOptions& options,
+                               const std::string& scratch) {
+  std::vector<BenchRow> rows(sequences.size() * methods.size());
+  Progress progress("bench", static_cast<int>(rows.size()), false, "runs");
+  std::mutex progress_mutex;
+  int done = 0;
+  runConcurrently(rows.size(), options.threads, [&](size_t i) {
+    rows[i] = benchOne(sequences[i / methods.size()], methods[i % methods.size()], options, scratch);
+    const std::lock_guard<std::mutex> lock(progress_mutex);
+    progress.update(++done);
+  });
+  progress.finish();
+  return rows;
+}
+
 void runBench(const BenchOptions& options) {
   options.params.check();
   const std::vector<GtSequence> sequences = loadGroundTruth(options.data, GtFormat::kAuto);
@@ -173,21 +264,20 @@ void runBench(const BenchOptions& options) {
   if (std::find(methods.begin(), methods.end(), kReference) == methods.end()) {
     methods.push_back(kReference);
   }
-  std::vector<BenchRow> rows;
-  Progress progress("bench", static_cast<int>(sequences.size() * methods.size()), false, "runs");
-  for (const GtSequence& sequence : sequences) {
-    for (const std::string& method : methods) {
-      rows.push_back(benchOne(sequence, method, options, scratch));
-      progress.update(static_cast<int>(rows.size()));
-    }
+  std::vector<BenchRow> rows = benchAll(sequences, methods, options, scratch);
+  std::optional<Throughput> throughput;
+  if (options.threads > 1) {
+    throughput = measureThroughput(sequences, methods.front(), options, scratch);
   }
-  progress.finish();
   fs::remove_all(scratch);
   std::vector<BenchRow> means = meanRows(rows, methods);
   compareWithReference(&rows);
   compareWithReference(&means);
+  const std::string threads =
+      options.threads == 1 ? "one thread"
+                           : std::to_string(options.threads) + " runs at a time, one thread each";
   const std::string setting =
-      "movseg bench on " + cpuModel() + ", one thread" +
+      "movseg bench on " + cpuModel() + ", " + threads +
       (options.size.empty() ? ", native size" : ", frames resized to " + options.size);
   std::cout << setting << "\n"
             << formatRows(rows) << formatRows(means).substr(formatRows({}).size())
@@ -195,10 +285,18 @@ void runBench(const BenchOptions& options) {
                "previous frame); MEAN rows: each sequence weighs the same; ms/frame: median "
                "per-frame time of the method (MEAN: mean of the medians); x mog2: over OpenCV "
                "MOG2's, timed in the same run; faults: minor page faults per frame of the whole "
-               "run (reading and writing included).\n";
+               "run (reading and writing included).\n"
+            << (throughput ? formatThroughput(*throughput) : "");
   if (!options.json_file.empty()) {
-    const nlohmann::json report{{"cpu", cpuModel()}, {"size", options.size},
-                                {"rows", rowsJson(rows)}, {"means", rowsJson(means)}};
+    nlohmann::json report{{"cpu", cpuModel()}, {"size", options.size}, {"threads", options.threads},
+                          {"rows", rowsJson(rows)}, {"means", rowsJson(means)}};
+    if (throughput) {
+      report["throughput"] = {{"method", throughput->method},
+                              {"one_thread_fps", throughput->one_thread},
+                              {"two_threads_fps", throughput->two_threads},
+                              {"streams", throughput->streams},
+                              {"streams_at_once_fps", throughput->at_once}};
+    }
     writeTextAtomic(options.json_file, report.dump(2) + "\n");
   }
   if (!options.html_file.empty()) {
@@ -221,6 +319,11 @@ void addBenchCommand(CLI::App& app) {
       ->delimiter(',')
       ->check(CLI::IsMember(enumNames<Method>()));
   cmd->add_option("--size", options->size, "Resize frames to WxH before segmenting");
+  cmd->add_option("--threads", options->threads,
+                  "Runs at a time, one thread each (the table's accuracy is the same); from 2, "
+                  "also the throughput of one stream on 1 and 2 threads and of N streams at once")
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
   cmd->add_option("--json", options->json_file, "Write the table as JSON");
   cmd->add_option("--html", options->html_file,
                   "Write a report page: the table, charts of J, each sequence's worst frames");

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <stdexcept>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
@@ -17,6 +18,12 @@ constexpr int kExitInterrupted = 130;  // SIGINT or SIGTERM, 128 + SIGINT as she
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+
+// `text` on one line, whatever it holds (a file name may contain a newline): errors are one line.
+inline std::string oneLine(std::string text) {
+  for (char& c : text) c = c == '\n' || c == '\r' ? ' ' : c;
+  return text;
+}
 
 void addSegmentCommand(CLI::App& app);
 void addSynthCommand(CLI::App& app);

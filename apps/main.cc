@@ -27,14 +27,8 @@ void reportFailedWrites() {
   std::signal(SIGXFSZ, SIG_IGN);
 }
 
-// One line whatever the message holds (a file name may contain a newline).
-std::string oneLine(std::string text) {
-  for (char& c : text) c = c == '\n' || c == '\r' ? ' ' : c;
-  return text;
-}
-
 int fail(int code, const std::exception& e) {
-  std::cerr << "movseg: error: " << oneLine(e.what()) << std::endl;
+  std::cerr << "movseg: error: " << movseg::cli::oneLine(e.what()) << std::endl;
   return code;
 }
 
@@ -59,7 +53,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "movseg " MOVSEG_VERSION);
   app.require_subcommand(1);
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
-    return "movseg: error: " + oneLine(e.what()) + "\n";
+    return "movseg: error: " + movseg::cli::oneLine(e.what()) + "\n";
   });
   movseg::cli::addSegmentCommand(app);
   movseg::cli::addSynthCommand(app);

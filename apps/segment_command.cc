@@ -1,24 +1,90 @@
-// movseg segment INPUT -o OUTDIR [--overlay [PATH]] [--show] [--debug] [--static] ...
+// movseg segment INPUT... -o OUTDIR [--threads N] [--overlay [PATH]] [--show] [--debug] ...
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
 #include <memory>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "commands.h"
 #include "params_options.h"
 #include "segment_run.h"
 
 namespace movseg::cli {
+namespace {
+
+// What went wrong with a completed run's input, or "".
+std::string inputFailure(const SegmentSummary& summary) {
+  const std::string problems = describeInputProblems(summary);
+  return problems.empty() ? "" : problems + "; the files written are complete";
+}
+
+void throwIfInterrupted(int frames, bool interrupted) {
+  if (!interrupted) return;
+  std::cerr << "movseg: interrupted after " << frames
+            << " frames; the files written so far are complete\n";
+  throw CLI::RuntimeError(kExitInterrupted);
+}
+
+// One input: its stream on up to two threads (the next frame analysed while this one is cut).
+void segmentOne(SegmentOptions options, int threads) {
+  options.threads = std::min(threads, 2);
+  const SegmentSummary summary = runSegmentation(options);
+  throwIfInterrupted(summary.frames, summary.interrupted);
+  if (!options.quiet) std::cout << "segment: " << describeSummary(summary) << std::endl;
+  const std::string failure = inputFailure(summary);
+  if (!failure.empty()) throw std::runtime_error("'" + options.input + "': " + failure);
+}
+
+// Several inputs: `threads` at a time, each on one thread, into OUTDIR/<name>/. A failing input
+// reports its error and the others go on; the exit status says whether any failed.
+void segmentMany(const SegmentOptions& shared, const std::vector<std::string>& inputs,
+                 int threads) {
+  std::vector<SegmentOptions> runs = perInputRuns(shared, inputs);
+  for (SegmentOptions& run : runs) run.quiet = true;  // bars of runs at once would mix
+  int failed = 0, frames = 0;
+  bool interrupted = false;
+  runSegmentations(runs, threads, [&](size_t i, const RunOutcome& outcome) {
+    const std::string failure =
+        outcome.error.empty() ? inputFailure(outcome.summary) : outcome.error;
+    frames += outcome.summary.frames;
+    interrupted = interrupted || outcome.summary.interrupted;
+    if (!failure.empty()) {
+      ++failed;
+      std::cerr << "movseg: error: " << oneLine("'" + runs[i].input + "': " + failure) << std::endl;
+    } else if (!shared.quiet && !outcome.summary.interrupted) {
+      std::cout << "segment: " << runs[i].input << ": " << describeSummary(outcome.summary)
+                << std::endl;
+    }
+  });
+  throwIfInterrupted(frames, interrupted);
+  if (!shared.quiet) {
+    std::cout << "segment: " << runs.size() - failed << " of " << runs.size() << " inputs done in "
+              << shared.output_dir << std::endl;
+  }
+  if (failed > 0) throw CLI::RuntimeError(kExitRunFailed);  // each failure has said why
+}
+
+}  // namespace
 
 void addSegmentCommand(CLI::App& app) {
   auto options = std::make_shared<SegmentOptions>();
+  auto inputs = std::make_shared<std::vector<std::string>>();
+  auto threads = std::make_shared<int>(1);
   CLI::App* cmd = app.add_subcommand("segment", "Segment the moving objects of a video");
-  cmd->add_option("INPUT", options->input,
-                  "Video file, folder of images (sorted by name), camera index or stream URL")
+  cmd->add_option("INPUT", *inputs,
+                  "Video file, folder of images (sorted by name), camera index or stream URL; "
+                  "with several, each one's outputs go to OUTDIR/<name>/")
       ->required();
   cmd->add_option("-o,--output", options->output_dir, "Folder for the masks 00000.png, ...")
       ->required();
+  cmd->add_option("--threads", *threads,
+                  "Threads: one INPUT is pipelined over two (the same masks); several INPUTs "
+                  "run N at a time, one per thread")
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
   cmd->add_option("--overlay", options->overlay,
                   "Overlay pictures: a folder (PNG frames) or a video file (.mp4, .mkv, .mov: "
                   "H.264 at the input's frame rate; .avi: Motion JPEG); without a value, "
@@ -45,25 +111,20 @@ void addSegmentCommand(CLI::App& app) {
                 "Stop at the first decode error (else they are counted, and reported at the end)");
   cmd->add_flag("-q,--quiet", options->quiet, "No progress bar and no summary");
   addParamsOptions(cmd, &options->params);
-  cmd->callback([options, cmd, timeout] {
+  cmd->callback([options, inputs, threads, cmd, timeout] {
     if (cmd->count("--stats") > 0 && options->stats_file.empty()) {
       throw UsageError("--stats: the file name is empty");
     }
+    const bool several = inputs->size() > 1;
     if (cmd->count("--overlay") > 0 && options->overlay.empty()) {
-      options->overlay = options->output_dir + "/overlay";
+      options->overlay = several ? "overlay" : options->output_dir + "/overlay";
     }
     options->timeout = std::chrono::milliseconds(std::llround(*timeout * 1000));
-    const SegmentSummary summary = runSegmentation(*options);
-    if (summary.interrupted) {
-      std::cerr << "movseg: interrupted after " << summary.frames
-                << " frames; the files written so far are complete\n";
-      throw CLI::RuntimeError(kExitInterrupted);
-    }
-    if (!options->quiet) std::cout << "segment: " << describeSummary(summary) << std::endl;
-    const std::string problems = describeInputProblems(summary);
-    if (!problems.empty()) {
-      throw std::runtime_error("'" + options->input + "': " + problems +
-                               "; the files written are complete");
+    if (several) {
+      segmentMany(*options, *inputs, *threads);
+    } else {
+      options->input = inputs->front();
+      segmentOne(*options, *threads);
     }
   });
 }

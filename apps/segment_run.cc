@@ -8,8 +8,12 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <deque>
+#include <exception>
 #include <filesystem>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
@@ -17,7 +21,9 @@
 #include <opencv2/videoio.hpp>
 
 #include "commands.h"
+#include "concurrent.h"
 #include "core/frame.h"
+#include "core/worker.h"
 #include "io/atomic_write.h"
 #include "io/frame_source.h"
 #include "io/overlay.h"
@@ -25,6 +31,7 @@
 #include "live_window.h"
 #include "movseg/fields.h"
 #include "movseg/segmenter.h"
+#include "movseg/stream_segmenter.h"
 #include "progress.h"
 
 namespace movseg::cli {
@@ -38,22 +45,30 @@ std::atomic<bool> g_stop{false};
 extern "C" void onSignal(int) { g_stop = true; }
 
 // SIGINT / SIGTERM end the run after the current frame (a blocking read of a stream gives up at
-// once); what was written stays complete.
+// once); what was written stays complete. Runs at once (several inputs, bench --threads) and a
+// batch around them share one installation: the first scope clears the flag and installs the
+// handlers, the last restores the previous ones.
 class StopOnSignal {
  public:
   StopOnSignal() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (scopes_++ > 0) return;
     g_stop = false;
     previous_int_ = std::signal(SIGINT, onSignal);
     previous_term_ = std::signal(SIGTERM, onSignal);
   }
   ~StopOnSignal() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (--scopes_ > 0) return;
     std::signal(SIGINT, previous_int_);
     std::signal(SIGTERM, previous_term_);
   }
 
  private:
-  void (*previous_int_)(int);
-  void (*previous_term_)(int);
+  static inline std::mutex mutex_;
+  static inline int scopes_ = 0;
+  static inline void (*previous_int_)(int) = nullptr;
+  static inline void (*previous_term_)(int) = nullptr;
 };
 
 void makeFolder(const std::string& path) {
@@ -351,6 +366,154 @@ class RunOutputs {
   bool finished_ = false;
 };
 
+// A frame as read, ready for the segmenter, and what its source said when it was read.
+struct InputFrame {
+  bool got = false;    // false at the end of the input
+  cv::Mat frame;       // as decoded
+  cv::Mat input;       // what the segmenter takes: `frame` resized (bench --size), or `frame`
+  SourceReport report;
+  std::string name;    // the source's describe()
+};
+
+// The source's frames, resized for the segmenter. With `ahead`, each is read and resized on a
+// thread of its own while the caller works on the frame before: decoding (and bench's resize)
+// were a third of the calling thread's time on two threads. A read's exception is thrown by the
+// read() that would have returned its frame.
+class FrameReader {
+ public:
+  // The source is not touched by the caller while the reader lives (it reads ahead).
+  FrameReader(FrameSource* source, cv::Size resize, bool ahead)
+      : source_(source), resize_(resize), ahead_(ahead ? std::make_unique<Worker>() : nullptr) {
+    if (ahead_) readAhead();
+  }
+
+  // The next frame; valid until the next call. After the end, the end again.
+  const InputFrame& read() {
+    if (!ahead_) {
+      readInto(&current_);
+      return current_;
+    }
+    if (!reading_) return current_;  // the end, or a read that failed
+    reading_ = false;
+    try {
+      ahead_->wait();
+    } catch (...) {
+      current_.got = false;  // nothing more to read
+      throw;
+    }
+    // Swapped, not copied: the next read refills the frame the caller is now done with.
+    std::swap(current_, next_);
+    if (current_.got) readAhead();
+    return current_;
+  }
+
+  // The frame read() returned last, for messages.
+  const std::string& describe() const { return current_.name; }
+
+ private:
+  void readInto(InputFrame* frame) {
+    frame->got = source_->read(&frame->frame);
+    frame->report = source_->report();
+    frame->name = source_->describe();
+    if (frame->got) frame->input = resizedTo(frame->frame, resize_);
+  }
+  void readAhead() {
+    reading_ = true;
+    ahead_->start([this] { readInto(&next_); });
+  }
+
+  FrameSource* source_;
+  cv::Size resize_;
+  InputFrame current_, next_;      // next_ is the worker's between start() and wait()
+  bool reading_ = false;           // a read is in flight
+  std::unique_ptr<Worker> ahead_;  // last: destroyed first, it ends the read in flight
+};
+
+// A frame given to the segmenter, waiting for its result: one push later on two threads.
+struct PushedFrame {
+  int index = 0;
+  cv::Size size;          // the frame's own: the mask is scaled back to it
+  cv::Mat frame;          // kept only when an overlay is drawn
+  SourceReport source;    // as it was when the frame was read
+  int new_errors = 0;     // decode errors reported while it was read
+};
+
+// Each pushed frame's result, in order, to the run's outputs (the mask at the frame's size, the
+// overlay, the live window) and its summary. With `behind`, the files are written on a thread of
+// their own while the next frame is cut: encoding the PNGs and the file system's work were a
+// third of the calling thread's time on two threads. A failed write is then thrown by the next
+// write() or by finish().
+class ResultWriter {
+ public:
+  ResultWriter(const SegmentOptions& options, RunOutputs* outputs, SegmentSummary* summary,
+               Progress* progress, LiveWindow* window, bool behind)
+      : options_(options), outputs_(outputs), summary_(summary), progress_(progress),
+        window_(window), behind_(behind ? std::make_unique<Worker>() : nullptr) {}
+
+  bool drawsOverlay() const { return !options_.overlay.empty() || options_.show; }
+
+  void expect(PushedFrame pushed) { waiting_.push_back(std::move(pushed)); }
+
+  // The result of the oldest frame expected, if the segmenter gave one; false when the viewer
+  // closed the live window.
+  bool write(std::optional<Result> given) {
+    if (!given) return true;
+    Files files{std::move(waiting_.front()), std::move(*given), cv::Mat()};
+    waiting_.pop_front();
+    const PushedFrame& pushed = files.pushed;
+    Result& result = files.result;
+    if (result.mask.size() != pushed.size) {
+      cv::resize(result.mask, result.mask, pushed.size, 0, 0, cv::INTER_NEAREST);
+    }
+    summary_->frame_ms.add(result.diagnostics.total_ms);
+    summary_->resets += result.diagnostics.reset;
+    summary_->motion_fallbacks += result.diagnostics.motion_fallback;
+    summary_->scene_cuts += result.diagnostics.scene_cut;
+    if (drawsOverlay()) {
+      files.picture = drawOverlay(pushed.frame, result, hudLine(pushed.index, result.diagnostics),
+                                  options_.feature_dots);
+    }
+    const cv::Mat picture = files.picture;
+    writeFiles(std::move(files));
+    ++summary_->frames;
+    progress_->update(summary_->frames);
+    return window_->show(picture);
+  }
+
+  // Waits for the files being written, if any; throws when their write failed.
+  void finish() {
+    if (behind_) behind_->wait();
+  }
+
+ private:
+  struct Files {
+    PushedFrame pushed;
+    Result result;
+    cv::Mat picture;  // the overlay, empty when none is wanted
+  };
+
+  void writeFiles(Files files) {
+    if (!behind_) return writeNow(files);
+    behind_->wait();  // the previous frame's first, and its failure
+    files_ = std::move(files);
+    behind_->start([this] { writeNow(files_); });
+  }
+
+  void writeNow(const Files& files) {
+    const PushedFrame& pushed = files.pushed;
+    outputs_->write(pushed.index, files.result, files.picture, pushed.source, pushed.new_errors);
+  }
+
+  const SegmentOptions& options_;
+  RunOutputs* outputs_;
+  SegmentSummary* summary_;
+  Progress* progress_;
+  LiveWindow* window_;
+  std::deque<PushedFrame> waiting_;  // pushed, oldest first, their results not yet written
+  Files files_;                      // the worker's between start() and wait()
+  std::unique_ptr<Worker> behind_;   // last: destroyed first, it ends the write in flight
+};
+
 }  // namespace
 
 bool SegmentSummary::truncated() const {
@@ -364,57 +527,71 @@ SegmentSummary runSegmentation(const SegmentOptions& options) {
   LiveWindow window(options.show);
   Params params = options.params;
   params.debug_images = params.debug_images || options.debug;
-  Segmenter segmenter(params);
+  // One code path for both thread counts: on one thread each frame's result is flushed at once,
+  // as Segmenter::process would give it.
+  StreamSegmenter segmenter(params, options.threads);
   StopOnSignal stop_on_signal;
   std::unique_ptr<FrameSource> source =
       FrameSource::open(options.input, DecoderLimits{options.timeout, &g_stop});
+  const SourceReport opened = source->report();
   claimOutputFolder(options);
-  RunOutputs outputs(options, source->report().fps);
+  RunOutputs outputs(options, opened.fps);
 
   SegmentSummary summary;
-  int total = source->report().expected_frames;
+  int total = opened.expected_frames;
   if (options.max_frames >= 0 && (total < 0 || total > options.max_frames)) total = options.max_frames;
   Progress progress("segment", total, options.quiet);
-  const auto start = std::chrono::steady_clock::now();
-  cv::Mat frame;
+  // On two threads the frames are also read ahead and their files written behind.
+  ResultWriter writer(options, &outputs, &summary, &progress, &window, options.threads > 1);
+  FrameReader reader(source.get(), options.resize, options.threads > 1);
   int decode_errors = 0;
+  // The next frame, and the decode errors reported while it was read; throws for a frame that
+  // cannot be read, or a decode error with stop_on_decode_error.
+  const auto readFrame = [&](int* new_errors) -> const InputFrame& {
+    const InputFrame& read = reader.read();
+    summary.source = read.report;
+    *new_errors = summary.source.decode_errors - decode_errors;
+    decode_errors = summary.source.decode_errors;
+    if (*new_errors > 0 && options.stop_on_decode_error) {
+      throw std::runtime_error(read.name + ": decode error: " + summary.source.last_error);
+    }
+    return read;
+  };
+  const auto checked = [&](auto step) {
+    try {
+      return step();
+    } catch (const std::exception& e) {
+      throw std::runtime_error(reader.describe() + ": " + e.what());
+    }
+  };
+  const auto start = std::chrono::steady_clock::now();
+  std::exception_ptr input_failure;  // thrown once the frames before it are written
+  int pushed = 0;
   for (;;) {
-    if (options.max_frames >= 0 && summary.frames >= options.max_frames) {
+    if (options.max_frames >= 0 && pushed >= options.max_frames) {
       summary.reached_max_frames = true;
       break;
     }
     if (g_stop) break;
-    const bool got = source->read(&frame);
-    summary.source = source->report();
-    const int new_errors = summary.source.decode_errors - decode_errors;
-    decode_errors = summary.source.decode_errors;
-    if (new_errors > 0 && options.stop_on_decode_error) {
-      throw std::runtime_error(source->describe() + ": decode error: " + summary.source.last_error);
-    }
-    if (!got) break;
-    const int index = summary.frames;
-    Result result;
+    int new_errors = 0;
+    const InputFrame* read = nullptr;
     try {
-      result = segmenter.process(resizedTo(frame, options.resize));
-    } catch (const std::exception& e) {
-      throw std::runtime_error(source->describe() + ": " + e.what());
+      read = &readFrame(&new_errors);
+    } catch (const std::exception&) {
+      input_failure = std::current_exception();
+      break;
     }
-    if (result.mask.size() != frame.size()) {
-      cv::resize(result.mask, result.mask, frame.size(), 0, 0, cv::INTER_NEAREST);
-    }
-    summary.frame_ms.add(result.diagnostics.total_ms);
-    summary.resets += result.diagnostics.reset;
-    summary.motion_fallbacks += result.diagnostics.motion_fallback;
-    summary.scene_cuts += result.diagnostics.scene_cut;
-    cv::Mat picture;
-    if (!options.overlay.empty() || options.show) {
-      picture = drawOverlay(frame, result, hudLine(index, result.diagnostics), options.feature_dots);
-    }
-    outputs.write(index, result, picture, summary.source, new_errors);
-    ++summary.frames;
-    progress.update(summary.frames);
-    if (!window.show(picture)) break;
+    if (!read->got) break;
+    // The frame is kept for its overlay: the reader refills its buffer before the result comes.
+    const cv::Mat kept = writer.drawsOverlay() ? read->frame.clone() : cv::Mat();
+    writer.expect({pushed++, read->frame.size(), kept, summary.source, new_errors});
+    std::optional<Result> result = checked([&] { return segmenter.push(read->input); });
+    if (options.threads == 1) result = checked([&] { return segmenter.flush(); });
+    if (!writer.write(std::move(result))) break;
   }
+  writer.write(checked([&] { return segmenter.flush(); }));  // the last frame's, on two threads
+  writer.finish();
+  if (input_failure) std::rethrow_exception(input_failure);
   summary.interrupted = g_stop;
   progress.finish();
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -424,6 +601,77 @@ SegmentSummary runSegmentation(const SegmentOptions& options) {
                              (summary.source.timed_out ? " (no answer within the timeout)" : ""));
   }
   return summary;
+}
+
+std::vector<RunOutcome> runSegmentations(
+    const std::vector<SegmentOptions>& runs, int threads,
+    const std::function<void(size_t index, const RunOutcome& outcome)>& ended) {
+  StopOnSignal stop_on_signal;  // one for the batch: a signal between two runs is not lost
+  std::vector<RunOutcome> outcomes(runs.size());
+  std::mutex ended_mutex;
+  runConcurrently(runs.size(), threads, [&](size_t i) {
+    RunOutcome& outcome = outcomes[i];
+    if (g_stop) {
+      outcome.summary.interrupted = true;
+    } else {
+      try {
+        outcome.summary = runSegmentation(runs[i]);
+      } catch (const std::exception& e) {
+        outcome.error = e.what();
+      }
+    }
+    const std::lock_guard<std::mutex> lock(ended_mutex);
+    ended(i, outcome);
+  });
+  return outcomes;
+}
+
+std::string inputName(const std::string& input) {
+  fs::path path = fs::path(input).lexically_normal();
+  if (!path.has_filename()) path = path.parent_path();  // "walk/" is "walk"
+  std::error_code error;
+  if (!fs::is_directory(path, error)) return path.stem().string();
+  const std::string name = path.filename().string();
+  const bool layout = name == "frames" || name == "input" || name == "images";
+  return layout ? path.parent_path().filename().string() : name;
+}
+
+std::vector<SegmentOptions> perInputRuns(const SegmentOptions& shared,
+                                         const std::vector<std::string>& inputs) {
+  if (shared.show) throw UsageError("--show takes one input");
+  for (const auto& [option, name] : {std::pair<const char*, std::string>{"--stats", shared.stats_file},
+                                     {"--overlay", shared.overlay}}) {
+    if (fs::path(name).has_parent_path()) {
+      throw UsageError(std::string(option) + " '" + name +
+                       "': with several inputs, a file name written in each input's folder");
+    }
+  }
+  std::map<std::string, std::string> named;  // name -> input
+  std::vector<SegmentOptions> runs;
+  for (const std::string& input : inputs) {
+    const std::string name = inputName(input);
+    if (name.empty() || name == "." || name == "..") {
+      throw UsageError("'" + input + "': no name for its output folder");
+    }
+    if (!named.emplace(name, input).second) {
+      throw UsageError("'" + named[name] + "' and '" + input + "' would both write " +
+                       (fs::path(shared.output_dir) / name).string() + ": rename one");
+    }
+    const std::string path = inputPath(input);
+    if (!path.empty() && isSameOrInside(shared.output_dir, path)) {
+      throw UsageError("-o '" + shared.output_dir + "' would write into the input '" + input + "'");
+    }
+    SegmentOptions run = shared;
+    run.input = input;
+    run.output_dir = (fs::path(shared.output_dir) / name).string();
+    const auto inFolder = [&](const std::string& file) {
+      return file.empty() ? file : (fs::path(run.output_dir) / file).string();
+    };
+    run.stats_file = inFolder(shared.stats_file);
+    run.overlay = inFolder(shared.overlay);
+    runs.push_back(std::move(run));
+  }
+  return runs;
 }
 
 std::string describeInputProblems(const SegmentSummary& summary) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,9 @@ struct SegmentOptions {
   bool quiet = false;         // no progress, no summary line
   cv::Size resize;            // non-empty: frames are resized to this before segmentation and
                               // the masks back to the frame's own size (bench --size)
+  int threads = 1;            // the stream's: 1, or 2 to cut a frame while the next one is
+                              // analysed (StreamSegmenter), the one after read and the one
+                              // before written, each on a thread of its own (the same files)
 };
 
 struct SegmentSummary {
@@ -53,6 +57,29 @@ struct SegmentSummary {
 // a failed write, a decode error with stop_on_decode_error, or --show without a display. The
 // files written before a failure stay complete under their final names.
 SegmentSummary runSegmentation(const SegmentOptions& options);
+
+// One run per element of `runs`, as runSegmentation does, `threads` runs at a time, each on one
+// thread; a run that fails ends alone. `ended` is called as each run ends, one call at a time.
+// After SIGINT or SIGTERM the runs in progress stop after their current frame and no run
+// starts. Returns each run's outcome, in the order of `runs`.
+struct RunOutcome {
+  SegmentSummary summary;
+  std::string error;  // the one-line reason it failed; "" when it did not
+};
+std::vector<RunOutcome> runSegmentations(
+    const std::vector<SegmentOptions>& runs, int threads,
+    const std::function<void(size_t index, const RunOutcome& outcome)>& ended);
+
+// The runs of `segment IN1 IN2 ... -o OUTDIR`: `shared` for each input, its outputs in
+// OUTDIR/<name>/ (inputName). Throws UsageError for two inputs of one name, an output folder
+// inside an input, --show, or a --stats or --overlay value that is not a plain file name (with
+// several inputs they name a file in each input's folder).
+std::vector<SegmentOptions> perInputRuns(const SegmentOptions& shared,
+                                         const std::vector<std::string>& inputs);
+
+// An input's name for its output folder, as `python3 -m movseg batch` names it: 'clips/walk.mp4'
+// is 'walk', a folder its own name, and a layout folder ('walk/frames') its parent's.
+std::string inputName(const std::string& input);
 
 // "123 frames in 1.2 s (101.3 fps, median 9.1 ms/frame)", and what went wrong with the input.
 std::string describeSummary(const SegmentSummary& summary);

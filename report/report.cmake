@@ -1,9 +1,9 @@
-# The assets of the HTML report (apps/html_report.cc), compiled into the CLI: Chart.js, which
-# `npm ci` installs from the committed package-lock.json into <build>/report/node_modules (the
-# repository holds no node_modules; after that first install the build needs no network), and
-# report.js / report.css. Without npm the CLI is built all the same and `--html` says what is
-# missing. Included by the top CMakeLists.txt: a custom command's output serves targets of its
-# own directory only.
+# The assets of the HTML report (apps/html_report.cc), compiled into the CLI's library
+# (movseg_app): Chart.js, which `npm ci` installs from the committed package-lock.json into
+# <build>/report/node_modules (the repository holds no node_modules; after that first install the
+# build needs no network), and report.js / report.css. Without npm the CLI is built all the same
+# and `--html` says what is missing. Included by the top CMakeLists.txt: a custom command's
+# output serves targets of its own directory only.
 set(report_npm_dir ${CMAKE_BINARY_DIR}/report)
 set(report_dir ${CMAKE_CURRENT_LIST_DIR})
 set(report_chart_js ${report_npm_dir}/node_modules/chart.js/dist/chart.umd.js)
@@ -30,4 +30,4 @@ add_custom_command(OUTPUT ${report_assets}
           -DREPORT_DIR=${report_dir} -P ${report_dir}/embed.cmake
   DEPENDS ${report_chart_js} ${report_dir}/report.js ${report_dir}/report.css ${report_dir}/embed.cmake
   COMMENT "Embedding the HTML report's assets")
-target_sources(movseg_cli PRIVATE ${report_assets})
+target_sources(movseg_app PRIVATE ${report_assets})

@@ -7,6 +7,7 @@ namespace movseg::python {
 
 void bindParams(pybind11::module_& module);     // Params
 void bindResult(pybind11::module_& module);     // Result, Diagnostics
-void bindSegmenter(pybind11::module_& module);  // Segmenter, createMovingCameraSubtractor
+void bindSegmenter(pybind11::module_& module);  // Segmenter, StreamSegmenter,
+                                                // createMovingCameraSubtractor
 
 }  // namespace movseg::python

@@ -1,12 +1,17 @@
-// movseg.Segmenter, and movseg.createMovingCameraSubtractor for code written for cv2's MOG2.
+// movseg.Segmenter, movseg.StreamSegmenter, and movseg.createMovingCameraSubtractor for code
+// written for cv2's MOG2.
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <utility>
+
+#include <pybind11/stl.h>
 
 #include "bindings.h"
 #include "movseg/background_subtractor.h"
 #include "movseg/segmenter.h"
+#include "movseg/stream_segmenter.h"
 #include "ndarray.h"
 
 namespace py = pybind11;
@@ -20,7 +25,8 @@ namespace {
 // numpy frame).
 template <typename Object>
 struct Guarded {
-  explicit Guarded(Object guarded) : object(std::move(guarded)) {}
+  template <typename... Args>
+  explicit Guarded(std::in_place_t, Args&&... args) : object(std::forward<Args>(args)...) {}
   template <typename Function>
   auto run(Function&& function) {
     py::gil_scoped_release release;
@@ -32,10 +38,17 @@ struct Guarded {
 };
 
 using PySegmenter = Guarded<Segmenter>;
+using PyStream = Guarded<StreamSegmenter>;
 
 Result process(PySegmenter& segmenter, const py::object& frame, bool rgb) {
   const cv::Mat mat = frameFromArray(frame, rgb);
   return segmenter.run([&](Segmenter& s) { return s.process(mat); });
+}
+
+// push() copies the frame before it returns: the array may be freed or refilled after the call.
+std::optional<Result> push(PyStream& stream, const py::object& frame, bool rgb) {
+  const cv::Mat mat = frameFromArray(frame, rgb);
+  return stream.run([&](StreamSegmenter& s) { return s.push(mat); });
 }
 
 // A cv2.BackgroundSubtractor object as OpenCV's Python module lays it out (CVPY_TYPE_DECLARE in
@@ -69,7 +82,7 @@ void bindSegmenter(py::module_& module) {
                           "Segments the moving objects of a video, one frame at a time; each "
                           "frame is compared with the previous one only. Use one Segmenter per "
                           "stream.")
-      .def(py::init([](const Params& p) { return std::make_unique<PySegmenter>(Segmenter(p)); }),
+      .def(py::init([](const Params& p) { return std::make_unique<PySegmenter>(std::in_place, p); }),
            py::arg("params") = Params(), "Raises ValueError when the parameters are out of range.")
       .def("process", &process, py::arg("frame"), py::kw_only(), py::arg("rgb") = false,
            "Takes the next frame, a numpy array: HxWx3 BGR as cv2 reads it, HxW grey or HxWx4 "
@@ -93,6 +106,28 @@ void bindSegmenter(py::module_& module) {
           [](PySegmenter& s) {
             return s.run([](Segmenter& segmenter) { return segmenter.params(); });
           },
+          "A copy of the parameters.");
+
+  py::class_<PyStream>(module, "StreamSegmenter",
+                       "Segments one stream on two threads: while a frame is segmented, the next "
+                       "is analysed. Masks identical to Segmenter's, one push later.")
+      .def(py::init([](const Params& p, int threads) {
+             return std::make_unique<PyStream>(std::in_place, p, threads);
+           }),
+           py::arg("params") = Params(), py::arg("threads") = 2,
+           "threads: 2, or 1 (the same work in turn on the calling thread). Raises ValueError "
+           "when the parameters are out of range or threads is not 1 or 2.")
+      .def("push", &push, py::arg("frame"), py::kw_only(), py::arg("rgb") = false,
+           "Takes the next frame (as Segmenter.process does) and returns the Result of the frame "
+           "pushed before it; None on the stream's first push. Raises as Segmenter.process does.")
+      .def("flush",
+           [](PyStream& s) { return s.run([](StreamSegmenter& stream) { return stream.flush(); }); },
+           "The Result of the last frame pushed, once; None when none is waiting.")
+      .def("reset", [](PyStream& s) { s.run([](StreamSegmenter& stream) { stream.reset(); }); },
+           "Forgets the stream, dropping a Result not yet returned (flush() first to keep it).")
+      .def_property_readonly(
+          "params",
+          [](PyStream& s) { return s.run([](StreamSegmenter& stream) { return stream.params(); }); },
           "A copy of the parameters.");
 
   module.def("createMovingCameraSubtractor", &movingCameraSubtractor, py::arg("params") = Params(),

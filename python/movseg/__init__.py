@@ -4,6 +4,9 @@
     segmenter = movseg.Segmenter(movseg.Params(lambda_=400))
     mask = segmenter.process(frame).mask      # frame: HxWx3 uint8 BGR, as cv2 reads it
 
+movseg.StreamSegmenter(params, threads=2) segments one stream on two threads: push() returns the
+previous frame's Result (the same masks), flush() the last one.
+
 `python3 -m movseg ...` runs the movseg command-line tool. docs/usage.md has more.
 """
 import sys
@@ -18,6 +21,7 @@ try:
         Params,
         Result,
         Segmenter,
+        StreamSegmenter,
         __version__,
         createMovingCameraSubtractor,
     )
@@ -33,5 +37,6 @@ __all__ = [
     "Params",
     "Result",
     "Segmenter",
+    "StreamSegmenter",
     "createMovingCameraSubtractor",
 ]

@@ -1,75 +1,11 @@
 #include "movseg/stream_segmenter.h"
 
-#include <condition_variable>
-#include <exception>
-#include <functional>
-#include <mutex>
 #include <stdexcept>
-#include <thread>
 
 #include "api/frame_loop.h"
+#include "core/worker.h"
 
 namespace movseg {
-namespace {
-
-// One task at a time on a thread of its own, kept for the segmenter's life (a thread per frame
-// would cost its creation and its stack's page faults every frame).
-class Worker {
- public:
-  Worker() : thread_([this] { run(); }) {}
-  ~Worker() {
-    {
-      const std::lock_guard<std::mutex> lock(mutex_);
-      quit_ = true;
-    }
-    wake_.notify_all();
-    thread_.join();
-  }
-
-  void start(std::function<void()> task) {
-    {
-      const std::lock_guard<std::mutex> lock(mutex_);
-      task_ = std::move(task);
-    }
-    wake_.notify_all();
-  }
-
-  // Waits for the task started last; rethrows what it threw.
-  void wait() {
-    std::unique_lock<std::mutex> lock(mutex_);
-    done_.wait(lock, [this] { return !task_; });
-    if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
-  }
-
- private:
-  void run() {
-    std::unique_lock<std::mutex> lock(mutex_);
-    for (;;) {
-      wake_.wait(lock, [this] { return task_ || quit_; });
-      if (quit_) return;
-      lock.unlock();
-      std::exception_ptr error;
-      try {
-        task_();
-      } catch (...) {
-        error = std::current_exception();
-      }
-      lock.lock();
-      error_ = error;
-      task_ = nullptr;
-      done_.notify_all();
-    }
-  }
-
-  std::mutex mutex_;
-  std::condition_variable wake_, done_;
-  std::function<void()> task_;
-  std::exception_ptr error_;
-  bool quit_ = false;
-  std::thread thread_;
-};
-
-}  // namespace
 
 struct StreamSegmenter::Impl {
   Impl(const Params& params, int thread_count)
@@ -78,10 +14,13 @@ struct StreamSegmenter::Impl {
   }
 
   FrameLoop loop;
-  std::unique_ptr<FrameLoop::Job> jobs[2];  // in turn: the pending one and the next one
-  int pending = -1;                         // the job analysed but not segmented, if any
-  cv::Mat incoming;                         // the frame being analysed
-  std::unique_ptr<Worker> worker;           // null with one thread
+  // In turn, frame after frame (a pipeline may keep references into the previous frame's
+  // analysis, as Segmenter's jobs): the pending one and the next one.
+  std::unique_ptr<FrameLoop::Job> jobs[2];
+  int next = 0;      // the job of the next frame pushed, whether or not flush() came between
+  int pending = -1;  // the job analysed but not segmented, if any
+  cv::Mat incoming;                // the frame being analysed
+  std::unique_ptr<Worker> worker;  // null with one thread
 
   // Forgets the stream; a failed phase ends it (the pipeline may hold half a pair).
   void restart() {
@@ -143,7 +82,8 @@ std::optional<Result> StreamSegmenter::push(const cv::Mat& frame) {
   Impl& s = *impl_;
   s.settle();
   s.incoming = s.loop.ownedBgr(frame);
-  const int slot = s.pending == 0 ? 1 : 0;
+  const int slot = s.next;
+  s.next = 1 - slot;
   s.analyseIncoming(s.jobs[slot].get());
   std::optional<Result> previous = s.segmentPending();  // while the worker analyses the frame
   s.pending = slot;

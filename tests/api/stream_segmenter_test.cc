@@ -49,6 +49,19 @@ TEST_P(Stream, GivesTheSegmentersMasksOnePushLater) {
   EXPECT_TRUE(test::identical(masks, test::masksOf(frames, params())));
 }
 
+// Each frame's mask at once, as `movseg segment` takes them on one thread: the jobs still take
+// turns (a pipeline may keep references into the previous frame's analysis).
+TEST_P(Stream, FlushingAfterEveryPushGivesTheSegmentersMasks) {
+  const std::vector<cv::Mat> frames = test::synthFrames(6, 6);
+  StreamSegmenter stream(params(), GetParam().threads);
+  std::vector<cv::Mat> masks;
+  for (const cv::Mat& frame : frames) {
+    EXPECT_FALSE(stream.push(frame).has_value());
+    masks.push_back(stream.flush()->mask);
+  }
+  EXPECT_TRUE(test::identical(masks, test::masksOf(frames, params())));
+}
+
 TEST_P(Stream, RestartsOnASizeChangeAndAfterReset) {
   std::vector<cv::Mat> frames = test::synthFrames(6, 7);
   for (size_t t = 3; t < frames.size(); ++t) cv::resize(frames[t], frames[t], {160, 120});

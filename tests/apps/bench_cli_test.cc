@@ -30,6 +30,42 @@ TEST(BenchCli, PaperBeatsMog2ByAClearMarginOnSyntheticVideo) {
   EXPECT_GT(paper, 0.7);
 }
 
+// Runs at once give every sequence the accuracy it has alone; two threads also print what they
+// add to throughput.
+TEST(BenchCli, AccuracyDoesNotDependOnThreads) {
+  const test::TempDir dir;
+  for (const char* seed : {"1", "2", "3"}) {
+    ASSERT_EQ(test::runCli("synth -o " + dir / "data/s" + seed + " --frames 8 --size 160x120 --seed " +
+                           seed).exit_code, 0);
+  }
+  nlohmann::json reports[2];
+  for (const int threads : {1, 2}) {
+    const std::string json = dir / ("bench" + std::to_string(threads) + ".json");
+    const test::CommandResult bench = test::runCli("bench " + dir / "data" + " --methods dense,paper --threads " +
+                                                   std::to_string(threads) + " --json " + json);
+    ASSERT_EQ(bench.exit_code, 0) << bench.output;
+    EXPECT_EQ(bench.output.find("one stream on 2 threads") != std::string::npos, threads == 2)
+        << bench.output;
+    std::ifstream in(json);
+    reports[threads - 1] = nlohmann::json::parse(in);
+  }
+  for (const char* table : {"rows", "means"}) {
+    const nlohmann::json &one = reports[0].at(table), &two = reports[1].at(table);
+    ASSERT_EQ(one.size(), two.size());
+    for (size_t i = 0; i < one.size(); ++i) {
+      for (const char* key : {"sequence", "method", "frames", "J", "J_recall", "F", "error_rate"}) {
+        EXPECT_EQ(one[i].at(key), two[i].at(key)) << table << " " << i << " " << key;
+      }
+    }
+  }
+  const nlohmann::json& throughput = reports[1].at("throughput");
+  EXPECT_EQ(throughput.at("method"), "dense");
+  for (const char* fps : {"one_thread_fps", "two_threads_fps", "streams_at_once_fps"}) {
+    EXPECT_GT(throughput.at(fps).get<double>(), 0.0) << fps;
+  }
+  EXPECT_FALSE(reports[0].contains("throughput"));
+}
+
 TEST(BenchCli, RejectsUnknownMethodAndBadSize) {
   const test::TempDir dir;
   ASSERT_EQ(test::runCli("synth -o " + dir / "data/s" + " --frames 3").exit_code, 0);

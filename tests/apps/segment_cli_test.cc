@@ -2,6 +2,7 @@
 // gives a one-line message and a non-zero exit.
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -9,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "movseg/fields.h"
+#include "reliability/reliability_fixture.h"
 #include "test_support.h"
 
 namespace movseg {
@@ -20,6 +22,23 @@ std::string synthClip(const test::TempDir& dir, int frames) {
   EXPECT_EQ(test::runCli("synth -o " + dir / "clip" + " --frames " + std::to_string(frames))
                 .exit_code, 0);
   return dir / "clip/frames";
+}
+
+std::string bytesOf(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+// The same files in `a` and `b`, byte for byte.
+void expectSameFiles(const std::string& a, const std::string& b, size_t count) {
+  const std::vector<std::string> files = test::filesIn(a);
+  ASSERT_EQ(files.size(), count) << a;
+  EXPECT_EQ(files, test::filesIn(b));
+  for (const std::string& name : files) {
+    EXPECT_EQ(bytesOf(a + "/" + name), bytesOf(b + "/" + name)) << b << "/" << name;
+  }
 }
 
 TEST(SegmentCli, WritesOneMaskPerFrameAndStatsLines) {
@@ -146,6 +165,77 @@ TEST(SegmentCli, MixedFrameTypesAndSizesAreAccepted) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("1 size resets"), std::string::npos) << r.output;
   EXPECT_EQ(cv::imread(dir / "out/00004.png", cv::IMREAD_UNCHANGED).size(), cv::Size(160, 120));
+}
+
+// --threads 2 on one input: the next frame is analysed while this one is cut; the same masks.
+TEST(SegmentCli, TwoThreadsOnOneInputWriteTheOneThreadFiles) {
+  const test::TempDir dir;
+  const std::string frames = synthClip(dir, 8);
+  for (const char* threads : {"1", "2"}) {
+    const test::CommandResult r = test::runCli("segment " + frames + " -o " + dir / threads +
+                                               " --threads " + threads);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("segment: 8 frames"), std::string::npos) << r.output;
+  }
+  expectSameFiles(dir / "1", dir / "2", 8 + 1);  // and the run manifest
+}
+
+// Several inputs, N at a time: each input's outputs (--stats and --overlay named in its folder)
+// in OUTDIR/<name>/, its masks those of a run of its own.
+TEST(SegmentCli, SeveralInputsEachIntoAFolderOfItsOwn) {
+  const test::TempDir dir;
+  for (const char* name : {"a", "b", "c"}) {
+    ASSERT_EQ(test::runCli("synth -o " + dir / name + " --frames 4 --size 160x120").exit_code, 0);
+  }
+  ASSERT_EQ(test::runCli("segment " + dir / "b/frames" + " -o " + dir / "alone" + " -q").exit_code, 0);
+  const test::CommandResult r =
+      test::runCli("segment " + dir / "a" + " " + dir / "b/frames" + " " + dir / "c" + " -o " +
+                   dir / "out" + " --threads 2 --stats stats.jsonl --overlay");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("segment: 3 of 3 inputs done"), std::string::npos) << r.output;
+  for (const std::string& input : {dir / "a", dir / "b/frames", dir / "c"}) {
+    EXPECT_NE(r.output.find("segment: " + input + ": 4 frames"), std::string::npos) << r.output;
+  }
+  for (const char* name : {"a", "b", "c"}) {
+    EXPECT_TRUE(fs::exists(dir / "out/" + name + "/stats.jsonl")) << name;
+    EXPECT_TRUE(fs::exists(dir / "out/" + name + "/overlay/00003.png")) << name;
+    EXPECT_TRUE(fs::exists(dir / "out/" + name + "/movseg-run.json")) << name;
+  }
+  for (const std::string& mask : test::filesIn(dir / "alone")) {
+    if (mask.find(".png") == std::string::npos) continue;  // the manifests name their inputs
+    EXPECT_EQ(bytesOf(dir / "alone/" + mask), bytesOf(dir / "out/b/" + mask)) << mask;
+  }
+}
+
+TEST(SegmentCli, AFailingInputAmongSeveralEndsAlone) {
+  const test::TempDir dir;
+  for (const char* name : {"a", "b"}) {
+    ASSERT_EQ(test::runCli("synth -o " + dir / name + " --frames 3 --size 160x120").exit_code, 0);
+  }
+  const test::CommandResult r = test::runCli("segment " + dir / "a" + " " + dir / "nothing.mp4" +
+                                             " " + dir / "b" + " -o " + dir / "out" + " -q --threads 2");
+  test::expectOneLineError(r, "nothing.mp4", 1);
+  EXPECT_TRUE(fs::exists(dir / "out/a/00002.png"));
+  EXPECT_TRUE(fs::exists(dir / "out/b/00002.png"));
+  EXPECT_FALSE(fs::exists(dir / "out/nothing"));
+}
+
+TEST(SegmentCli, SeveralInputsRefusedBeforeAnyRun) {
+  const test::TempDir dir;
+  const std::string a = dir / "a", b = dir / "b";
+  fs::create_directories(dir / "x");
+  for (const std::string& clip : {a, b, dir / "x/a"}) {
+    ASSERT_EQ(test::runCli("synth -o " + clip + " --frames 2 --size 160x120").exit_code, 0);
+  }
+  const std::string out = " -o " + dir / "out";
+  test::expectOneLineError(test::runCli("segment " + a + " " + dir / "x/a" + out), "rename one", 2);
+  test::expectOneLineError(test::runCli("segment " + a + " " + b + out + " --show"), "--show", 2);
+  test::expectOneLineError(
+      test::runCli("segment " + a + " " + b + out + " --stats " + dir / "s.jsonl"), "--stats", 2);
+  test::expectOneLineError(test::runCli("segment " + a + " " + b + " -o " + a + "/frames/out"),
+                           "into the input", 2);
+  test::expectOneLineError(test::runCli("segment " + a + out + " --threads 0"), "--threads", 2);
+  EXPECT_FALSE(fs::exists(dir / "out"));
 }
 
 }  // namespace

@@ -10,6 +10,8 @@ import pytest
 import movseg
 
 USER_CODE = textwrap.dedent("""\
+    from typing import Optional
+
     import numpy as np
     import movseg
 
@@ -22,6 +24,8 @@ USER_CODE = textwrap.dedent("""\
     model = result.diagnostics.model
     subtractor = movseg.createMovingCameraSubtractor(params)
     subtractor.clear()
+    stream = movseg.StreamSegmenter(params, threads=2)
+    previous: Optional[movseg.Result] = stream.push(np.zeros((8, 8, 3), np.uint8))
     movseg.Params(method="nope")
     params.lk_window = "11"
     total_text: str = result.diagnostics.total_ms
@@ -38,7 +42,7 @@ def test_mypy_checks_user_code_against_the_stubs(tmp_path):
         capture_output=True, text=True, env={**os.environ, "MYPYPATH": package_dir})
     errors = [line for line in done.stdout.splitlines() if ": error:" in line]
     flagged = sorted(int(line.split(":")[1]) for line in errors)
-    assert flagged == [13, 14, 15], done.stdout + done.stderr
+    assert flagged == [17, 18, 19], done.stdout + done.stderr
 
 
 def test_stubs_list_every_field():

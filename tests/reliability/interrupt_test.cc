@@ -41,7 +41,12 @@ std::string textOf(const std::string& path) {
   return text.str();
 }
 
-class Interrupt : public ::testing::TestWithParam<int> {
+struct Case {
+  int signal;
+  std::string threads;  // --threads: 2 reads ahead and writes behind on threads of their own
+};
+
+class Interrupt : public ::testing::TestWithParam<Case> {
  protected:
   static void SetUpTestSuite() {
     clip_ = new test::TempDir;
@@ -57,12 +62,13 @@ test::TempDir* Interrupt::clip_ = nullptr;
 TEST_P(Interrupt, MidwayLeavesCompleteFilesAndExits130) {
   test::TempDir dir;
   const std::string out = dir / "out", stats = dir / "out/stats.jsonl";
-  const pid_t pid = test::startCli({"segment", *clip_ / "clip/frames", "-o", out, "--stats", stats, "-q"},
-                             dir / "log.txt");
+  const pid_t pid = test::startCli({"segment", *clip_ / "clip/frames", "-o", out, "--stats", stats,
+                                    "-q", "--threads", GetParam().threads},
+                                   dir / "log.txt");
   ASSERT_GT(pid, 0);
   // The sixth mask exists: the run is midway, its signal handler installed.
   const bool midway = waitForFile(out + "/00005.png", std::chrono::seconds(120));
-  kill(pid, GetParam());
+  kill(pid, GetParam().signal);
   int status = 0;
   ASSERT_EQ(waitpid(pid, &status, 0), pid);
   ASSERT_TRUE(midway);
@@ -95,11 +101,50 @@ TEST_P(Interrupt, MidwayLeavesCompleteFilesAndExits130) {
   EXPECT_FALSE(manifest.at("finished").get<bool>());
 }
 
-std::string signalName(const ::testing::TestParamInfo<int>& signal) {
-  return signal.param == SIGINT ? "SIGINT" : "SIGTERM";
+std::string caseName(const ::testing::TestParamInfo<Case>& info) {
+  return (info.param.signal == SIGINT ? "SIGINT_" : "SIGTERM_") + info.param.threads + "threads";
 }
 
-INSTANTIATE_TEST_SUITE_P(Signals, Interrupt, ::testing::Values(SIGINT, SIGTERM), signalName);
+INSTANTIATE_TEST_SUITE_P(Signals, Interrupt,
+                         ::testing::Values(Case{SIGINT, "1"}, Case{SIGTERM, "1"}, Case{SIGINT, "2"}),
+                         caseName);
+
+// Several inputs at once share one signal handler: SIGINT stops both runs after their current
+// frame, and each input's folder holds complete masks and an unfinished manifest.
+class InterruptSeveral : public Interrupt {};
+
+TEST_F(InterruptSeveral, StopsEveryRunWithCompleteFiles) {
+  test::TempDir dir;
+  const std::string clip = *clip_ / "clip", other = dir / "other";
+  fs::create_directory_symlink(clip, other);
+  const std::string out = dir / "out";
+  const pid_t pid = test::startCli({"segment", clip, other, "-o", out, "-q", "--threads", "2"},
+                                   dir / "log.txt");
+  ASSERT_GT(pid, 0);
+  const bool midway = waitForFile(out + "/clip/00005.png", std::chrono::seconds(120));
+  kill(pid, SIGINT);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(midway);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  const std::string log = textOf(dir / "log.txt");
+  EXPECT_EQ(log.rfind("movseg: interrupted after ", 0), 0u) << log;
+  for (const char* name : {"clip", "other"}) {
+    int masks = 0;
+    for (const std::string& file : test::filesIn(out + "/" + name)) {
+      if (file == "movseg-run.json") continue;
+      ASSERT_EQ(fs::path(file).extension(), ".png") << file;  // no *.part left behind
+      ASSERT_FALSE(cv::imread(out + "/" + name + "/" + file, cv::IMREAD_UNCHANGED).empty()) << file;
+      ++masks;
+    }
+    EXPECT_LT(masks, kFrames) << name;
+    const nlohmann::json manifest =
+        nlohmann::json::parse(textOf(out + "/" + name + "/movseg-run.json"));
+    EXPECT_EQ(manifest.at("frames_done").get<int>(), masks) << name;
+    EXPECT_FALSE(manifest.at("finished").get<bool>()) << name;
+  }
+}
 
 }  // namespace
 }  // namespace movseg

@@ -56,29 +56,36 @@ bool anyPartFile(const std::string& folder) {
   return false;
 }
 
+// On two threads the files are written behind, on a thread of their own: the same outcome.
 TEST_F(OutputFaults, FullDiskForStatsStopsWithWholeLinesUnderTheFinalName) {
-  const std::string stats = dir_ / "stats.jsonl";
-  const test::CommandResult r = test::runCliWithFileLimit(
-      3000, "segment " + frames() + " -o " + dir_ / "out" + " --stats " + stats + " -q");
-  test::expectOneLineError(r, "stats.jsonl", kRunFailed);
-  ASSERT_TRUE(fs::exists(stats));
-  const int lines = wholeJsonLines(stats);
-  EXPECT_GT(lines, 0);
-  EXPECT_LT(lines, 12);
-  EXPECT_FALSE(anyPartFile(dir_.path()));
-  const nlohmann::json manifest = nlohmann::json::parse(std::ifstream(dir_ / "out/movseg-run.json"));
-  EXPECT_FALSE(manifest.at("finished").get<bool>());
+  for (const std::string threads : {"1", "2"}) {
+    const std::string stats = dir_ / threads + "/stats.jsonl", out = dir_ / threads + "/out";
+    fs::create_directories(dir_ / threads);
+    const test::CommandResult r = test::runCliWithFileLimit(
+        3000, "segment " + frames() + " -o " + out + " --stats " + stats + " -q --threads " + threads);
+    test::expectOneLineError(r, "stats.jsonl", kRunFailed);
+    ASSERT_TRUE(fs::exists(stats));
+    const int lines = wholeJsonLines(stats);
+    EXPECT_GT(lines, 0);
+    EXPECT_LT(lines, 12);
+    EXPECT_FALSE(anyPartFile(dir_.path()));
+    const nlohmann::json manifest = nlohmann::json::parse(std::ifstream(out + "/movseg-run.json"));
+    EXPECT_FALSE(manifest.at("finished").get<bool>());
+  }
 }
 
 // Debug pictures are the largest images a run writes: the first one passes the limit.
 TEST_F(OutputFaults, FullDiskForPicturesStops) {
-  const test::CommandResult r =
-      test::runCliWithFileLimit(3000, "segment " + frames() + " -o " + dir_ / "out" +
-                                      " --method paper --debug -q");  // pictures over 3 kB
-  test::expectOneLineError(r, ".png", kRunFailed);
-  EXPECT_TRUE(fs::exists(dir_ / "out/00000.png"));
-  EXPECT_FALSE(fs::exists(dir_ / "out/00002.png"));
-  EXPECT_FALSE(anyPartFile(dir_.path()));
+  for (const std::string threads : {"1", "2"}) {
+    const std::string out = dir_ / threads;
+    const test::CommandResult r =
+        test::runCliWithFileLimit(3000, "segment " + frames() + " -o " + out +
+                                        " --method paper --debug -q --threads " + threads);
+    test::expectOneLineError(r, ".png", kRunFailed);
+    EXPECT_TRUE(fs::exists(out + "/00000.png"));
+    EXPECT_FALSE(fs::exists(out + "/00002.png"));
+    EXPECT_FALSE(anyPartFile(dir_.path()));
+  }
 }
 
 TEST_F(OutputFaults, FullDiskForAnOverlayVideoLeavesNoUnplayableFile) {
