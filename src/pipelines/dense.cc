@@ -25,12 +25,12 @@ namespace {
 // Phase 1: the frame at the working scale and its flow to the previous frame — all that does not
 // need the previous frame's mask, so that it runs while that mask is made (StreamSegmenter).
 struct DenseAnalysis : Analysis {
-  cv::Mat bgr;      // segmentation scale
+  cv::Mat bgr;                      // segmentation scale
   cv::Mat grey;
   std::vector<GridSample> samples;  // where the camera is fitted
-  cv::Mat flow;     // to the previous frame; empty on a first frame
-  cv::Mat flow_map;  // where the flow takes each pixel (flowMap)
-  double scale = 1;  // bgr = the frame scaled by this
+  cv::Mat flow;                     // to the previous frame; empty on a first frame
+  cv::Mat flow_map;                 // where the flow takes each pixel (flowMap)
+  double scale = 1;                 // bgr = the frame scaled by this
   cv::Size input_size;
   double prepare_ms = 0, flow_ms = 0;
 };
