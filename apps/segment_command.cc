@@ -81,8 +81,9 @@ void addSegmentCommand(CLI::App& app) {
   cmd->add_option("-o,--output", options->output_dir, "Folder for the masks 00000.png, ...")
       ->required();
   cmd->add_option("--threads", *threads,
-                  "Threads: one INPUT is pipelined over two (the same masks); several INPUTs "
-                  "run N at a time, one per thread")
+                  "From 2, one INPUT is pipelined (the next frame analysed while this one is "
+                  "cut, reading and writing on threads of their own; the same files); several "
+                  "INPUTs run N at a time, one thread each")
       ->check(CLI::Range(1, 256))
       ->capture_default_str();
   cmd->add_option("--overlay", options->overlay,
