@@ -22,20 +22,6 @@ int reflected(int v, int n) {
   return v >= 0 && v < n ? v : cv::borderInterpolate(v, n, cv::BORDER_REFLECT_101);
 }
 
-// 3x3 Sobel derivatives of `grey` at `p`, borders reflected.
-cv::Vec2i sobelAt(const cv::Mat& grey, cv::Point p) {
-  const uchar* rows[3];
-  int column[3];
-  for (int k = 0; k < 3; ++k) {
-    rows[k] = grey.ptr<uchar>(reflected(p.y + k - 1, grey.rows));
-    column[k] = reflected(p.x + k - 1, grey.cols);
-  }
-  const auto at = [&](int j, int i) { return static_cast<int>(rows[j][column[i]]); };
-  const int dx = (at(0, 2) - at(0, 0)) + 2 * (at(1, 2) - at(1, 0)) + (at(2, 2) - at(2, 0));
-  const int dy = (at(2, 0) - at(0, 0)) + 2 * (at(2, 1) - at(0, 1)) + (at(2, 2) - at(0, 2));
-  return {dx, dy};
-}
-
 float textureQuantile(const std::vector<GridSample>& samples, double q) {
   if (samples.empty()) return 0.f;
   std::vector<float> textures;
@@ -85,14 +71,31 @@ float minEigenValueAt(const cv::Mat& grey, cv::Point p) {
   // cornerMinEigenVal's normalisation: Sobel's weight (4), the window side, 8-bit range. The
   // sums of products of integer derivatives are exact; the scale comes last.
   constexpr double kScale = 1.0 / (4 * kWindow * 255.0);
+  // Reflected as OpenCV reflects the derivative images: a window pixel outside the frame takes
+  // the derivatives of its mirror image inside, whose 3x3 neighbourhood is reflected in turn.
+  // Row and column indices are worked out once per sample, not once per derivative.
+  const uchar* rows[kWindow][3];
+  int columns[kWindow][3];
+  for (int j = 0; j < kWindow; ++j) {
+    const int y = reflected(p.y + j - kWindow / 2, grey.rows);
+    const int x = reflected(p.x + j - kWindow / 2, grey.cols);
+    for (int k = 0; k < 3; ++k) {
+      rows[j][k] = grey.ptr<uchar>(reflected(y + k - 1, grey.rows));
+      columns[j][k] = reflected(x + k - 1, grey.cols);
+    }
+  }
   std::int64_t xx = 0, xy = 0, yy = 0;
-  for (int j = -kWindow / 2; j <= kWindow / 2; ++j) {
-    const int y = reflected(p.y + j, grey.rows);
-    for (int i = -kWindow / 2; i <= kWindow / 2; ++i) {
-      const cv::Vec2i d = sobelAt(grey, {reflected(p.x + i, grey.cols), y});
-      xx += d[0] * d[0];
-      xy += d[0] * d[1];
-      yy += d[1] * d[1];
+  for (int j = 0; j < kWindow; ++j) {
+    const uchar* const* r = rows[j];
+    for (int i = 0; i < kWindow; ++i) {
+      const int* c = columns[i];
+      const int dx = (r[0][c[2]] - r[0][c[0]]) + 2 * (r[1][c[2]] - r[1][c[0]]) +
+                     (r[2][c[2]] - r[2][c[0]]);
+      const int dy = (r[2][c[0]] - r[0][c[0]]) + 2 * (r[2][c[1]] - r[0][c[1]]) +
+                     (r[2][c[2]] - r[0][c[2]]);
+      xx += dx * dx;
+      xy += dx * dy;
+      yy += dy * dy;
     }
   }
   const double a = static_cast<double>(xx) * kScale * kScale / 2;
