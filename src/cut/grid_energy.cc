@@ -32,6 +32,7 @@ FlowGraph freePixelGraph(const GridEnergy& energy, const cv::Mat& state, cv::Mat
   const int w = state.cols, h = state.rows;
   *node = cv::Mat(state.size(), CV_32S, cv::Scalar(-1));
   FlowGraph graph;
+  graph.reserve(w * h, (w - 1) * h + (h - 1) * w);  // as if every pixel were free
   for (int y = 0; y < h; ++y) {
     const float* rf = energy.cost_fg.ptr<float>(y);
     const float* rb = energy.cost_bg.ptr<float>(y);

@@ -16,30 +16,22 @@
 
 namespace movseg {
 
-int FlowGraph::addNode(float to_source, float to_sink) {
-  source.push_back(to_source);
-  sink.push_back(to_sink);
-  return nodes() - 1;
-}
-
-void FlowGraph::addEdge(int a, int b, float capacity) {
-  edge_from.push_back(a);
-  edge_to.push_back(b);
-  edge_capacity.push_back(capacity);
+void FlowGraph::reserve(int node_count, int edge_count) {
+  source.reserve(static_cast<size_t>(node_count));
+  sink.reserve(static_cast<size_t>(node_count));
+  edges.reserve(static_cast<size_t>(edge_count));
 }
 
 namespace {
 
 std::vector<std::uint8_t> cutWithOpenCv(const FlowGraph& g) {
   cv::detail::GCGraph<float> graph(static_cast<unsigned>(g.nodes()),
-                                   static_cast<unsigned>(2 * g.edge_from.size()));
+                                   static_cast<unsigned>(2 * g.edges.size()));
   for (int i = 0; i < g.nodes(); ++i) {
     graph.addVtx();
     graph.addTermWeights(i, g.source[static_cast<size_t>(i)], g.sink[static_cast<size_t>(i)]);
   }
-  for (size_t e = 0; e < g.edge_from.size(); ++e) {
-    graph.addEdges(g.edge_from[e], g.edge_to[e], g.edge_capacity[e], g.edge_capacity[e]);
-  }
+  for (const FlowGraph::Edge& e : g.edges) graph.addEdges(e.from, e.to, e.capacity, e.capacity);
   graph.maxFlow();
   std::vector<std::uint8_t> side(static_cast<size_t>(g.nodes()));
   for (int i = 0; i < g.nodes(); ++i) side[static_cast<size_t>(i)] = graph.inSourceSegment(i);
@@ -79,10 +71,9 @@ std::vector<std::uint8_t> cutWithBoost(const FlowGraph& g) {
     add(source, v, g.source[static_cast<size_t>(i)], 0.f);
     add(v, sink, g.sink[static_cast<size_t>(i)], 0.f);
   }
-  for (size_t e = 0; e < g.edge_from.size(); ++e) {
-    add(static_cast<Traits::vertex_descriptor>(g.edge_from[e]),
-        static_cast<Traits::vertex_descriptor>(g.edge_to[e]), g.edge_capacity[e],
-        g.edge_capacity[e]);
+  for (const FlowGraph::Edge& e : g.edges) {
+    add(static_cast<Traits::vertex_descriptor>(e.from), static_cast<Traits::vertex_descriptor>(e.to),
+        e.capacity, e.capacity);
   }
   boost::boykov_kolmogorov_max_flow(graph, source, sink);
   auto colour = boost::get(boost::vertex_color, graph);
@@ -106,7 +97,7 @@ std::vector<std::uint8_t> cutWithoutEdges(const FlowGraph& g) {
 }  // namespace
 
 std::vector<std::uint8_t> minimumCut(const FlowGraph& graph, MaxFlowSolver solver) {
-  if (graph.edge_from.empty()) return cutWithoutEdges(graph);
+  if (graph.edges.empty()) return cutWithoutEdges(graph);
   return solver == MaxFlowSolver::kBoost ? cutWithBoost(graph) : cutWithOpenCv(graph);
 }
 

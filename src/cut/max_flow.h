@@ -12,11 +12,22 @@ struct FlowGraph {
   // sink (cost of labelling it source/foreground).
   std::vector<float> source, sink;
   // Undirected pairwise edges (capacity both ways).
-  std::vector<std::int32_t> edge_from, edge_to;
-  std::vector<float> edge_capacity;
+  struct Edge {
+    std::int32_t from, to;
+    float capacity;
+  };
+  std::vector<Edge> edges;
 
-  int addNode(float to_source, float to_sink);
-  void addEdge(int a, int b, float capacity);
+  // Room for that many nodes and edges: a graph of a whole image would otherwise grow its
+  // vectors a dozen times over.
+  void reserve(int node_count, int edge_count);
+  // Inline: called for every pixel of a cut.
+  int addNode(float to_source, float to_sink) {
+    source.push_back(to_source);
+    sink.push_back(to_sink);
+    return nodes() - 1;
+  }
+  void addEdge(int a, int b, float capacity) { edges.push_back({a, b, capacity}); }
   int nodes() const { return static_cast<int>(source.size()); }
 };
 
