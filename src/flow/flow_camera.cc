@@ -30,11 +30,15 @@ float textureQuantile(const std::vector<GridSample>& samples, double q) {
   return quantile(&textures, q);
 }
 
+float squaredDistance(const cv::Point2f& x, const cv::Point2f& y) {
+  const float dx = y.x - x.x, dy = y.y - x.y;
+  return dx * dx + dy * dy;
+}
+
 // Residual motion of a point: from where the camera puts it, x, to where the flow does, y.
 float residualOf(const cv::Point2f& x, const cv::Point2f& y, const FlowCamera& camera) {
   if (camera.epipole) return static_cast<float>(EpipoleEstimator::offLine(x, y, *camera.epipole));
-  const float dx = y.x - x.x, dy = y.y - x.y;
-  return std::sqrt(dx * dx + dy * dy);  // flow distances cannot overflow: hypot's care not needed
+  return std::sqrt(squaredDistance(x, y));  // flow distances cannot overflow: hypot's care not needed
 }
 
 // Off-plane samples must be at least this many, and this share of the background's, before
@@ -150,19 +154,20 @@ FlowCamera fitFlowCamera(const cv::Mat& flow, const std::vector<GridSample>& gri
   return camera;
 }
 
-void residualMotion(const cv::Mat& flow, const cv::Mat& camera_map, const FlowCamera& camera,
+void residualMotion(const cv::Mat& flow_map, const cv::Mat& camera_map, const FlowCamera& camera,
                     cv::Mat* residual) {
-  residual->create(flow.size(), CV_32F);
-  for (int y = 0; y < flow.rows; ++y) {
-    const auto* f = flow.ptr<cv::Vec2f>(y);
+  residual->create(flow_map.size(), CV_32F);
+  for (int y = 0; y < flow_map.rows; ++y) {
+    const auto* by_flow = flow_map.ptr<cv::Point2f>(y);
     const auto* on_plane = camera_map.ptr<cv::Point2f>(y);
     float* r = residual->ptr<float>(y);
-    const float fy = static_cast<float>(y);
-    for (int x = 0; x < flow.cols; ++x) {
-      const float fx = static_cast<float>(x);
-      r[x] = residualOf(on_plane[x], cv::Point2f(fx + f[x][0], fy + f[x][1]), camera);
+    if (camera.epipole) {
+      for (int x = 0; x < flow_map.cols; ++x) r[x] = residualOf(on_plane[x], by_flow[x], camera);
+    } else {  // squared here, rooted below: std::sqrt (errno) would keep this loop from vectorising
+      for (int x = 0; x < flow_map.cols; ++x) r[x] = squaredDistance(on_plane[x], by_flow[x]);
     }
   }
+  if (!camera.epipole) cv::sqrt(*residual, *residual);
 }
 
 void flowMap(const cv::Mat& flow, cv::Mat* map) {

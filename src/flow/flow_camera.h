@@ -48,9 +48,9 @@ FlowCamera fitFlowCamera(const cv::Mat& flow, const std::vector<GridSample>& gri
 float minEigenValueAt(const cv::Mat& grey, cv::Point p);
 
 // The motion the camera does not explain at every pixel (CV_32F): |p + flow(p) - model(p)|,
-// or with an epipole only its part across the epipolar line through model(p); `camera_map`
-// holds model(p), as cameraMap() makes it.
-void residualMotion(const cv::Mat& flow, const cv::Mat& camera_map, const FlowCamera& camera,
+// or with an epipole only its part across the epipolar line through model(p); `flow_map` holds
+// p + flow(p) and `camera_map` model(p), as flowMap() and cameraMap() make them.
+void residualMotion(const cv::Mat& flow_map, const cv::Mat& camera_map, const FlowCamera& camera,
                     cv::Mat* residual);
 
 // Where each pixel of the current frame came from in the previous one (CV_32FC2, for

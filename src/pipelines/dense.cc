@@ -128,7 +128,7 @@ class DensePipeline : public Pipeline {
     if (!mask_.empty()) carryMask(mask_, a.flow_map, &carried);
     const FlowCamera camera = fitFlowCamera(a.flow, a.samples, carried, params_, rng_);
     cameraMap(camera.model, a.grey.size(), &camera_map_);
-    residualMotion(a.flow, camera_map_, camera, &residual_);
+    residualMotion(a.flow_map, camera_map_, camera, &residual_);
     // The fit maps current to previous working pixels; eq. (4) warps previous to current.
     to_current_ = camera.model.inv();
     has_pair_ = true;

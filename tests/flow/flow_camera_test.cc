@@ -49,9 +49,10 @@ TEST(FlowCamera, FitsTheCameraAroundAMarkedMoverAndLeavesItsMotionAsResidual) {
   const FlowCamera fit = fitFlowCamera(flow, samples, moving, params, rng);
   ASSERT_FALSE(fit.fallback);
   EXPECT_LT(cv::norm(cv::Matx33d(fit.model * (1.0 / fit.model(2, 2))) - camera), 1e-3);
-  cv::Mat camera_map, residual;
+  cv::Mat flow_map, camera_map, residual;
+  flowMap(flow, &flow_map);
   cameraMap(fit.model, size, &camera_map);
-  residualMotion(flow, camera_map, fit, &residual);
+  residualMotion(flow_map, camera_map, fit, &residual);
   EXPECT_NEAR(residual.at<float>(55, 75), 5.0, 0.01);  // |(4, -3)|
   EXPECT_NEAR(residual.at<float>(10, 10), 0.0, 0.01);
   EXPECT_NEAR(residual.at<float>(110, 150), 0.0, 0.01);
