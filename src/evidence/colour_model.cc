@@ -13,8 +13,15 @@ constexpr float kBinFloor = 1e-4f;
 
 }  // namespace
 
-ColourModel::ColourModel(const Params& params)
-    : params_(params), shift_(8 - params.colour_bits) {}
+ColourModel::ColourModel(const Params& params) : params_(params) {
+  const int bits = params.colour_bits;
+  const int shift = 8 - bits;  // an 8-bit channel shifted right by this is its bin
+  for (int level = 0; level < 256; ++level) {
+    bin_bits_[0][level] = (level >> shift) << (2 * bits);
+    bin_bits_[1][level] = (level >> shift) << bits;
+    bin_bits_[2][level] = level >> shift;
+  }
+}
 
 void ColourModel::addEvidence(const cv::Mat& bgr, cv::Mat* evidence) const {
   if (evidence_.empty()) return;
@@ -26,7 +33,7 @@ void ColourModel::addEvidence(const cv::Mat& bgr, cv::Mat* evidence) const {
 }
 
 void ColourModel::update(const cv::Mat& bgr, const cv::Mat& evidence) {
-  const size_t bins = size_t{1} << (3 * (8 - shift_));
+  const size_t bins = size_t{1} << (3 * params_.colour_bits);
   count_fg_.assign(bins, 0.f);
   count_bg_.assign(bins, 0.f);
   float total_fg = 0, total_bg = 0;

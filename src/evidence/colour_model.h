@@ -4,6 +4,7 @@
 // interior, a flat patch the flow cannot follow).
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -28,12 +29,13 @@ class ColourModel {
  private:
   // Inline: called for every pixel twice a frame.
   int binOf(const cv::Vec3b& c) const {
-    const int bits = 8 - shift_;
-    return ((c[0] >> shift_) << (2 * bits)) | ((c[1] >> shift_) << bits) | (c[2] >> shift_);
+    return bin_bits_[0][c[0]] | bin_bits_[1][c[1]] | bin_bits_[2][c[2]];
   }
 
   Params params_;
-  int shift_;  // 8 - colour_bits: an 8-bit channel shifted right by this is its bin
+  // Per channel and 8-bit level, its bits of the bin: the first channel's are the highest.
+  // Looked up rather than shifted by a shift known only at run time, which costs more.
+  std::array<std::array<int, 256>, 3> bin_bits_;
   std::vector<float> foreground_, background_;  // normalised histograms; empty until learnt
   std::vector<float> evidence_;                  // per bin: what addEvidence() adds
   std::vector<float> count_fg_, count_bg_;      // scratch of update()
