@@ -23,12 +23,18 @@ ColourModel::ColourModel(const Params& params) : params_(params) {
   }
 }
 
-void ColourModel::addEvidence(const cv::Mat& bgr, cv::Mat* evidence) const {
-  if (evidence_.empty()) return;
+void ColourModel::addEvidence(const cv::Mat& bgr, const cv::Mat& evidence,
+                              cv::Mat* with_colour) const {
+  if (evidence_.empty()) {
+    evidence.copyTo(*with_colour);
+    return;
+  }
+  with_colour->create(evidence.size(), CV_32F);
   for (int y = 0; y < bgr.rows; ++y) {
     const auto* c = bgr.ptr<cv::Vec3b>(y);
-    float* e = evidence->ptr<float>(y);
-    for (int x = 0; x < bgr.cols; ++x) e[x] += evidence_[static_cast<size_t>(binOf(c[x]))];
+    const float* e = evidence.ptr<float>(y);
+    float* out = with_colour->ptr<float>(y);
+    for (int x = 0; x < bgr.cols; ++x) out[x] = e[x] + evidence_[static_cast<size_t>(binOf(c[x]))];
   }
 }
 

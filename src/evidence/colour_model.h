@@ -17,9 +17,9 @@ class ColourModel {
  public:
   explicit ColourModel(const Params& params);
 
-  // Adds colour_weight * clip(log(p_fg(c) / p_bg(c))) to `evidence` at every pixel of `bgr`
-  // (8-bit BGR, evidence's size); nothing before the first update.
-  void addEvidence(const cv::Mat& bgr, cv::Mat* evidence) const;
+  // with_colour = evidence + colour_weight * clip(log(p_fg(c) / p_bg(c))) at every pixel of
+  // `bgr` (8-bit BGR, evidence's size, CV_32F); evidence alone before the first update.
+  void addEvidence(const cv::Mat& bgr, const cv::Mat& evidence, cv::Mat* with_colour) const;
 
   // Learns from the pixels of `bgr` whose `evidence` (CV_32F) is beyond +-colour_confidence.
   void update(const cv::Mat& bgr, const cv::Mat& evidence);

@@ -144,8 +144,8 @@ class DensePipeline : public Pipeline {
     motionEvidence(residual_, scale, params_, &evidence);
     confirmMotion(confirmation_, &evidence);
     if (!carried.empty()) addMemory(carried, params_, &evidence);
-    cv::Mat unary = evidence.clone();
-    colour_.addEvidence(a.bgr, &unary);
+    cv::Mat unary;
+    colour_.addEvidence(a.bgr, evidence, &unary);
     unary += params_.foreground_bias;
     colour_.update(a.bgr, evidence);
     diag.classify_ms = millisecondsSince(start);
