@@ -35,21 +35,22 @@ struct DenseAnalysis : Analysis {
   double prepare_ms = 0, flow_ms = 0;
 };
 
-// The last segmented frame at the working scale, for the next pair (the analysis holding it is
-// reused for a later frame), and the one before it, warped onto it only when the user asks for
-// the compensated previous frame.
+// The last segmented frame at the working scale, for the next pair (its images outlive the
+// analysis that made them, which is reused for a later frame), and the one before it, warped
+// onto it only when the user asks for the compensated previous frame.
 struct PreviousFrame {
   cv::Mat bgr, grey, before_bgr;
 };
 
-// Copies the frame's images into `previous` on every way out of segment().
+// Keeps the frame's images as `previous` on every way out of segment(), without copying them:
+// analyse() writes a later frame's into buffers that nothing else refers to (FramePool).
 struct Remember {
   const DenseAnalysis& frame;
   PreviousFrame* previous;
   ~Remember() {
     cv::swap(previous->bgr, previous->before_bgr);
-    frame.bgr.copyTo(previous->bgr);
-    frame.grey.copyTo(previous->grey);
+    previous->bgr = frame.bgr;
+    previous->grey = frame.grey;
   }
 };
 
@@ -103,6 +104,8 @@ class DensePipeline : public Pipeline {
     const cv::Size size = scaledSize(bgr.size(), params_.segmentation_width);
     a.scale = static_cast<double>(size.width) / bgr.cols;
     a.input_size = bgr.size();
+    a.bgr = bgr_buffers_.take(size, CV_8UC3);
+    a.grey = grey_buffers_.take(size, CV_8U);
     downscale(bgr, size, &halved_, &a.bgr);
     cv::cvtColor(a.bgr, a.grey, cv::COLOR_BGR2GRAY);
     a.samples = gridSamples(a.grey, params_.flow_sample_step);
@@ -212,6 +215,7 @@ class DensePipeline : public Pipeline {
   cv::Matx33d to_current_;  // that model, previous to current working pixels
   cv::Size input_size_;
   cv::Mat halved_;  // scratch of downscale()
+  FramePool bgr_buffers_, grey_buffers_;  // of the analyses' images, which Remember keeps
 };
 
 }  // namespace
