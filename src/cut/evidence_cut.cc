@@ -1,5 +1,6 @@
 #include "cut/evidence_cut.h"
 
+#include <array>
 #include <cmath>
 
 #include <opencv2/imgproc.hpp>
@@ -10,19 +11,41 @@
 namespace movseg {
 namespace {
 
-// Edge weights smoothness * exp(-beta |dC|^2) to the right and down (squaredColourSteps).
+// weight * exp(-beta d) of a squared colour step d between 8-bit colours, an integer. Looked up
+// for the small steps, where most of an image's are (76 to 93 % of the edges of DAVIS frames at
+// 320 pixels wide are below 2,048), so that std::exp runs once per value, not once per edge.
+class ContrastWeight {
+ public:
+  ContrastWeight(float weight, float beta) : weight_(weight), beta_(beta) {
+    for (int step = 0; step < kTabled; ++step) table_[step] = of(static_cast<float>(step));
+  }
+
+  float operator()(float step) const {
+    return step < kTabled ? table_[static_cast<int>(step)] : of(step);
+  }
+
+ private:
+  static constexpr int kTabled = 2048;
+
+  float of(float step) const { return weight_ * std::exp(-beta_ * step); }
+
+  float weight_, beta_;
+  std::array<float, kTabled> table_;
+};
+
+// Edge weights smoothness * exp(-beta |dC|^2) to the right and down (squaredColourSteps) of
+// 8-bit BGR.
 void contrastWeights(const cv::Mat& bgr, double smoothness, GridEnergy* energy) {
   cv::Mat colour;
   bgr.convertTo(colour, CV_32FC3);
-  const float beta = squaredColourSteps(colour, energy);
+  const ContrastWeight weight(static_cast<float>(smoothness), squaredColourSteps(colour, energy));
   const int w = bgr.cols, h = bgr.rows;
-  const auto weight = static_cast<float>(smoothness);
   for (int y = 0; y < h; ++y) {
     float* right = energy->right.ptr<float>(y);
     float* down = energy->down.ptr<float>(y);
     for (int x = 0; x < w; ++x) {
-      if (x + 1 < w) right[x] = weight * std::exp(-beta * right[x]);
-      if (y + 1 < h) down[x] = weight * std::exp(-beta * down[x]);
+      if (x + 1 < w) right[x] = weight(right[x]);
+      if (y + 1 < h) down[x] = weight(down[x]);
     }
   }
 }
