@@ -1,0 +1,37 @@
+"""scripts/synth_sets.sh and scripts/group_means.py: the benchmark sets per seed and their
+means per group, as README's synthetic table is made."""
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+SOURCE = Path(os.environ.get("MOVSEG_SOURCE_DIR", Path(__file__).resolve().parents[2]))
+
+
+def test_group_means_averages_each_group_over_cameras_and_seeds(tmp_path):
+    rows = [{"sequence": name, "method": method, "J": j} for name, method, j in [
+        ("std-pan-s7", "dense", 0.9), ("std-zoom-s8", "dense", 0.7),
+        ("depth-camo-dolly-s7", "dense", 0.2), ("depth-dolly-s7", "dense", 0.6),
+        ("std-pan-s7", "paper", 0.5), ("std-zoom-s8", "paper", 0.3),
+        ("depth-camo-dolly-s7", "paper", 0.1), ("depth-dolly-s7", "paper", 0.4)]]
+    report = tmp_path / "bench.json"
+    report.write_text(json.dumps({"rows": rows}))
+    out = subprocess.run([sys.executable, str(SOURCE / "scripts" / "group_means.py"), str(report)],
+                         capture_output=True, text=True, check=True).stdout.splitlines()
+    table = {line.split("|")[1].strip(): line for line in out[2:]}
+    assert set(table) == {"std", "depth", "depth-camo"}  # depth-camo is not depth's
+    assert "| std | 2 | 0.800 (0.70 std-zoom-s8) | 0.400 (0.30 std-zoom-s8) |" in out
+    assert "| depth-camo | 1 | 0.200 (0.20 depth-camo-dolly-s7) |" in table["depth-camo"]
+
+
+def test_synth_sets_names_each_seed(tmp_path):
+    cli = os.environ["MOVSEG_CLI"]
+    subprocess.run(["bash", str(SOURCE / "scripts" / "synth_sets.sh"), str(tmp_path / "two"), "3",
+                    "4"], env={**os.environ, "MOVSEG": cli, "FRAMES": "2"}, check=True, capture_output=True)
+    names = sorted(p.name for p in (tmp_path / "two").iterdir())
+    assert len(names) == 2 * 19
+    assert "depth-camo-forward-s4" in names and "std-pan-s3" in names
+    subprocess.run(["bash", str(SOURCE / "scripts" / "synth_sets.sh"), str(tmp_path / "one"), "3"],
+                   env={**os.environ, "MOVSEG": cli, "FRAMES": "2"}, check=True, capture_output=True)
+    assert "std-pan" in {p.name for p in (tmp_path / "one").iterdir()}
