@@ -89,6 +89,23 @@ std::vector<float> unconfirmedResiduals(const FlowCamera& camera, const cv::Mat&
   return kept.size() >= all.size() / 4 ? kept : all;
 }
 
+// Depth read from one pair may be movers agreeing on an epipole by chance; a translating camera's
+// view of a static scene shows it pair after pair. So the epipole counts from the kPairs-th pair
+// in a row that has one, and not after the first that has none (keeping the last epipole over
+// such pairs, a hysteresis, cost DAVIS 0.011 J where water shows depth now and then;
+// docs/design.md, "Parallax").
+class PersistentDepth {
+ public:
+  void settle(FlowCamera* camera) {
+    pairs_ = camera->epipole ? pairs_ + 1 : 0;
+    if (pairs_ < kPairs) camera->epipole.reset();
+  }
+
+ private:
+  static constexpr int kPairs = 3;
+  int pairs_ = 0;  // in a row with an epipole
+};
+
 class DensePipeline : public Pipeline {
  public:
   explicit DensePipeline(const Params& params)
@@ -129,7 +146,8 @@ class DensePipeline : public Pipeline {
     Clock::time_point start = Clock::now();
     cv::Mat carried, evidence;
     if (!mask_.empty()) carryMask(mask_, a.flow_map, &carried);
-    const FlowCamera camera = fitFlowCamera(a.flow, a.samples, carried, params_, rng_);
+    FlowCamera camera = fitFlowCamera(a.flow, a.samples, carried, params_, rng_);
+    depth_.settle(&camera);
     cameraMap(camera.model, a.grey.size(), &camera_map_);
     residualMotion(a.flow_map, camera_map_, camera, &residual_);
     // The fit maps current to previous working pixels; eq. (4) warps previous to current.
@@ -186,6 +204,7 @@ class DensePipeline : public Pipeline {
   // A stream's first pair, or the first after a scene cut: no mask to carry, no colours known.
   cv::Mat forget(cv::Size size) {
     colour_.reset();
+    depth_ = PersistentDepth();
     mask_.release();
     return cv::Mat::zeros(size, CV_8U);
   }
@@ -209,6 +228,7 @@ class DensePipeline : public Pipeline {
   cv::Mat residual_, confirmation_;
   cv::Mat camera_map_;
   PhotometricCheck photometric_;
+  PersistentDepth depth_;
   PreviousFrame previous_;
   std::vector<float> scene_cut_scratch_;
   bool has_pair_ = false;    // the last frame had a camera model: eq. (4)'s I' can be made

@@ -81,5 +81,84 @@ TEST(Dense, AMoverThatLeavesTheViewLeavesTheMask) {
   EXPECT_GT(gone_at, 0);
 }
 
+// A sideways dolly past near posts: the far wall slides 2 px a frame, four posts in front of it
+// 5 to 7 px (parallax: faster the nearer, all along the direction of travel), and a red square
+// moves across that direction. Its frame t, and the posts' and the mover's pixels in it.
+struct DollyFrame {
+  cv::Mat image, posts, mover;
+};
+
+DollyFrame dollyPastPosts(int t) {
+  const cv::Size size(320, 240);
+  static const cv::Mat wall = test::texture({size.width + 200, size.height}, 11);
+  static const cv::Mat post = test::texture({16, size.height}, 12);
+  static const cv::Mat square = test::texture({40, 40}, 13) / 2 + cv::Scalar(0, 0, 120);  // red
+  DollyFrame frame{wall(cv::Rect(2 * t, 0, size.width, size.height)).clone(),
+                   cv::Mat::zeros(size, CV_8U), cv::Mat::zeros(size, CV_8U)};
+  const cv::Rect mover(150, 40 + 3 * t, 40, 40);
+  square.copyTo(frame.image(mover));
+  frame.mover(mover).setTo(255);
+  for (int i = 0; i < 4; ++i) {
+    const int x = 60 + 80 * i - (5 + i % 3) * t;  // nearer posts move faster
+    const cv::Rect at = cv::Rect(x, 0, 16, size.height) & cv::Rect({0, 0}, size);
+    if (at.empty()) continue;
+    post(cv::Rect(at.x - x, 0, at.width, at.height)).copyTo(frame.image(at));
+    frame.posts(at).setTo(255);
+    frame.mover(at).setTo(0);  // the posts are nearer than the square
+  }
+  return frame;
+}
+
+// Share of `region`'s pixels that `mask` marks, over frames from 8 on of a 30-frame dolly.
+struct DollyScores {
+  double posts_marked = 0, mover_found = 0;
+  int parallax_pairs = 0;
+};
+
+DollyScores segmentDolly(const Params& params) {
+  Segmenter segmenter(params);
+  DollyScores scores;
+  int counted = 0;
+  for (int t = 0; t < 30; ++t) {
+    const DollyFrame frame = dollyPastPosts(t);
+    const Result result = segmenter.process(frame.image);
+    scores.parallax_pairs += result.diagnostics.parallax;
+    if (t < 8) continue;
+    const cv::Mat posts = frame.posts & ~frame.mover;
+    scores.posts_marked += cv::countNonZero(result.mask & posts) / double(cv::countNonZero(posts));
+    scores.mover_found +=
+        cv::countNonZero(result.mask & frame.mover) / double(cv::countNonZero(frame.mover));
+    ++counted;
+  }
+  scores.posts_marked /= counted;
+  scores.mover_found /= counted;
+  return scores;
+}
+
+TEST(Dense, ADollyPastNearPostsReadsDepthAndKeepsThePostsOut) {
+  const DollyScores plane_and_parallax = segmentDolly(test::withMethod(Method::kDense));
+  EXPECT_GE(plane_and_parallax.parallax_pairs, 20);
+  EXPECT_LT(plane_and_parallax.posts_marked, 0.05);
+  EXPECT_GT(plane_and_parallax.mover_found, 0.8);
+  Params plane_only = test::withMethod(Method::kDense);
+  plane_only.parallax = false;  // the posts then move against the plane, as movers do
+  EXPECT_GT(segmentDolly(plane_only).posts_marked, 0.3);
+}
+
+// Movers on a plane agree on epipoles of their own, but locally: no pair reads depth.
+TEST(Dense, PlanarScenesWithMoversNeverReadDepth) {
+  for (const SynthCamera camera : {SynthCamera::kPan, SynthCamera::kZoom, SynthCamera::kRotate,
+                                   SynthCamera::kShake, SynthCamera::kStatic, SynthCamera::kMix}) {
+    for (const bool hard : {false, true}) {
+      const SynthSequence sequence(clip(camera, hard));
+      Segmenter segmenter(test::withMethod(Method::kDense));
+      for (int t = 0; t < sequence.size(); ++t) {
+        EXPECT_FALSE(segmenter.process(sequence.frame(t).frame).diagnostics.parallax)
+            << synthCameraName(camera) << (hard ? " camouflaged" : "") << ", frame " << t;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace movseg
