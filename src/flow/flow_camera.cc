@@ -48,14 +48,14 @@ float residualOf(const cv::Point2f& x, const cv::Point2f& y, const FlowCamera& c
 // spread over the view, their inliers in at least kMinEpipoleCells of CoverageSupportMeasurer's
 // 8x8 cells: a 3-D scene seen by a translating camera shows depth everywhere (the ground, near
 // posts, walls) while movers that happen to agree on an epipole are local. On the synthetic sets
-// a dolly past posts covers 24 cells or more on most pairs, planar scenes with movers on a few
-// pairs in a hundred (docs/design.md, "Parallax"). All samples count, also those the carried mask
+// (three seeds) a dolly past posts covers 28 cells or more on 31 to 48 pairs of 59, the planar
+// scenes with movers on none (docs/design.md, "Parallax"). All samples count, also those the carried mask
 // says move (the camera's own fit leaves them out): a post the mask once took for a mover must
 // still show as depth, or the mistake would keep itself.
 constexpr size_t kMinOffPlane = 20;
 constexpr double kMinOffPlaneShare = 0.2;
 constexpr double kMinEpipoleAgreement = 0.5;
-constexpr int kMinEpipoleCells = 24;
+constexpr int kMinEpipoleCells = 28;
 
 std::optional<cv::Vec3d> findEpipole(const FlowCamera& camera, cv::Size size,
                                      const RansacOptions& options, cv::RNG& rng) {
