@@ -92,8 +92,8 @@ std::vector<float> unconfirmedResiduals(const FlowCamera& camera, const cv::Mat&
 // Depth read from one pair may be movers agreeing on an epipole by chance, or water; a translating
 // camera's view of a static scene shows it pair after pair. So the epipole counts from the
 // kPairs-th pair in a row that has one, and not after the first that has none. Five pairs rather
-// than three: DAVIS J 0.590 -> 0.592 (with 28 cells, 0.594; without depth, 0.595), the
-// synthetic 3-D scenes 0.813 -> 0.830 (0.722 without). Keeping the last epipole over pairs
+// than three: DAVIS J 0.590 -> 0.594 (0.595 without depth), the synthetic 3-D scenes 0.813 ->
+// 0.830 (0.722 without). Keeping the last epipole over pairs
 // without one, a hysteresis, cost DAVIS 0.011 J where water shows depth now and then
 // (docs/design.md, "Parallax").
 class PersistentDepth {
