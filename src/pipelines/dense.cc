@@ -93,9 +93,8 @@ std::vector<float> unconfirmedResiduals(const FlowCamera& camera, const cv::Mat&
 // camera's view of a static scene shows it pair after pair. So the epipole counts from the
 // kPairs-th pair in a row that has one, and not after the first that has none. Five pairs rather
 // than three: DAVIS J 0.590 -> 0.594 (0.595 without depth), the synthetic 3-D scenes 0.813 ->
-// 0.830 (0.722 without). Keeping the last epipole over pairs
-// without one, a hysteresis, cost DAVIS 0.011 J where water shows depth now and then
-// (docs/design.md, "Parallax").
+// 0.830 (0.722 without). Keeping the last epipole over pairs without one, a hysteresis, cost
+// DAVIS 0.011 J where water shows depth now and then (docs/design.md, "Parallax").
 class PersistentDepth {
  public:
   void settle(FlowCamera* camera) {
