@@ -39,7 +39,8 @@ float squaredDistance(const cv::Point2f& x, const cv::Point2f& y) {
 // Residual motion of a point: from where the camera puts it, x, to where the flow does, y.
 float residualOf(const cv::Point2f& x, const cv::Point2f& y, const FlowCamera& camera) {
   if (camera.epipole) return static_cast<float>(EpipoleEstimator::offLine(x, y, *camera.epipole));
-  return std::sqrt(squaredDistance(x, y));  // flow distances cannot overflow: hypot's care not needed
+  // Flow distances cannot overflow: hypot's care is not needed.
+  return std::sqrt(squaredDistance(x, y));
 }
 
 // Depth is read from the samples off the camera's plane (more than twice the inlier distance)
@@ -49,9 +50,9 @@ float residualOf(const cv::Point2f& x, const cv::Point2f& y, const FlowCamera& c
 // 8x8 cells: a 3-D scene seen by a translating camera shows depth everywhere (the ground, near
 // posts, walls) while movers that happen to agree on an epipole are local. On the synthetic sets
 // (three seeds) a dolly past posts covers 28 cells or more on 31 to 48 pairs of 59, the planar
-// scenes with movers on none (docs/design.md, "Parallax"). All samples count, also those the carried mask
-// says move (the camera's own fit leaves them out): a post the mask once took for a mover must
-// still show as depth, or the mistake would keep itself.
+// scenes with movers on none (docs/design.md, "Parallax"). All samples count, also those the
+// carried mask says move (the camera's own fit leaves them out): a post the mask once took for a
+// mover must still show as depth, or the mistake would keep itself.
 constexpr size_t kMinOffPlane = 20;
 constexpr double kMinOffPlaneShare = 0.2;
 constexpr double kMinEpipoleAgreement = 0.5;
