@@ -188,6 +188,11 @@ class DensePipeline : public Pipeline {
       confirmation_.convertTo(picture, CV_8U, 255);
       return picture;
     });
+    debug.put("unary", [&] {  // mid-grey: undecided; each log-odds unit 25 levels, white moving
+      cv::Mat picture;
+      unary.convertTo(picture, CV_8U, 25.0, 128.0);
+      return picture;
+    });
     return mask_;
   }
 

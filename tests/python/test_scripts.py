@@ -35,3 +35,26 @@ def test_synth_sets_names_each_seed(tmp_path):
     subprocess.run(["bash", str(SOURCE / "scripts" / "synth_sets.sh"), str(tmp_path / "one"), "3"],
                    env={**os.environ, "MOVSEG": cli, "FRAMES": "2"}, check=True, capture_output=True)
     assert "std-pan" in {p.name for p in (tmp_path / "one").iterdir()}
+
+
+def test_indep_synth_makes_frames_with_masks_of_small_movers(tmp_path):
+    subprocess.run([sys.executable, str(SOURCE / "scripts" / "indep_synth.py"), str(tmp_path),
+                    "--seeds", "7"], check=True, capture_output=True)
+    import cv2
+    import numpy as np
+    clip = tmp_path / "indep-fractal-pan-7"
+    frames = sorted((clip / "frames").iterdir())
+    masks = sorted((clip / "masks").iterdir())
+    assert [p.name for p in frames] == [p.name for p in masks] and len(frames) == 40
+    assert cv2.imread(str(frames[0])).shape == (240, 320, 3)
+    shares = [np.count_nonzero(cv2.imread(str(m), 0)) / (320 * 240) for m in masks]
+    assert all(0.005 < s < 0.08 for s in shares)  # small movers, always in view
+    first, last = (cv2.imread(str(masks[i]), 0) > 0 for i in (0, -1))
+    assert np.count_nonzero(first & ~last) > 0  # they move
+
+
+def test_indep_synth_refuses_a_missing_davis_folder(tmp_path):
+    run = subprocess.run([sys.executable, str(SOURCE / "scripts" / "indep_synth.py"), str(tmp_path),
+                          "--davis", str(tmp_path / "nothing")], capture_output=True, text=True)
+    assert run.returncode != 0 and "no such folder" in run.stderr
+    assert not any(tmp_path.iterdir())

@@ -1,0 +1,137 @@
+#!/usr/bin/env python3
+"""Synthetic sequences made independently of movseg's own generator (src/synth), to check that
+what the methods learnt from synth and DAVIS holds elsewhere (docs/synth.md, "An independent
+check"). Nothing of src/synth is shared: a textured plane (fractal 1/f noise, or the first frame
+of a DAVIS sequence when --davis is given), seen by one of six camera motions; one or two
+*small* camouflaged movers (irregular polygons of 15-33 px radius whose skin is cut from the same
+texture) moving 1-3.5 px a frame over the plane; sensor noise sigma 2 and a gain drifting within
++-10 %. 40 frames of 320x240 each, OUT/<name>/frames/NNNNN.png and OUT/<name>/masks/NNNNN.png
+(0/255), the layout `movseg bench OUT` reads.
+
+  scripts/indep_synth.py OUT [--seeds 0-23] [--davis ../shared/data/davis2016]
+
+Seed s chooses the camera (s % 6: static pan zoom rotate shake mix) and the texture (fractal,
+or with --davis every other six seeds a DAVIS frame); names are indep-<texture>-<camera>-<s>.
+"""
+import argparse
+import math
+import os
+import sys
+from pathlib import Path
+
+import cv2
+import numpy as np
+
+WIDTH, HEIGHT, FRAMES = 320, 240, 40
+CAMERAS = ["static", "pan", "zoom", "rotate", "shake", "mix"]
+
+
+def fractal_texture(rng, size=1024):
+    """Coloured 1/f noise with a random mixing of the channels."""
+    f = np.fft.fftfreq(size)
+    fx, fy = np.meshgrid(f, f)
+    amplitude = 1 / np.maximum(np.hypot(fx, fy), 1 / size) ** 1.1
+    channels = []
+    for _ in range(3):
+        phase = rng.uniform(0, 2 * np.pi, (size, size))
+        t = np.real(np.fft.ifft2(amplitude * np.exp(1j * phase)))
+        channels.append((t - t.mean()) / t.std())
+    image = np.stack(channels, -1) @ (rng.normal(0, 1, (3, 3)) * 0.5 + np.eye(3)).T
+    return np.clip(128 + 40 * image / image.std(), 0, 255).astype(np.uint8)
+
+
+def davis_texture(rng, davis):
+    sequences = sorted(p for p in Path(davis).iterdir() if (p / "frames").is_dir())
+    first = sorted((sequences[rng.integers(len(sequences))] / "frames").iterdir())[0]
+    return cv2.resize(cv2.imread(str(first)), (1024, 576), interpolation=cv2.INTER_AREA)
+
+
+def camera(motion, t, texture_size):
+    """The homography taking frame pixels to texture pixels at frame t."""
+    tx = ty = angle = 0.0
+    scale = 1.0
+    if motion in ("pan", "mix"):
+        tx, ty = 2.0 * t, 0.6 * t
+    if motion in ("zoom", "mix"):
+        scale = 1.0 - 0.005 * t
+    if motion in ("rotate", "mix"):
+        angle = 0.004 * t
+    if motion == "shake":
+        tx, ty = 3 * math.sin(1.7 * t) + 2 * math.sin(3.1 * t), 3 * math.cos(2.3 * t)
+        angle = 0.006 * math.sin(1.3 * t)
+    c, s = math.cos(angle) * scale, math.sin(angle) * scale
+    centre = np.array([[1, 0, -WIDTH / 2], [0, 1, -HEIGHT / 2], [0, 0, 1]])
+    turn = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
+    place = np.array([[1, 0, texture_size[1] / 2 + tx], [0, 1, texture_size[0] / 2 + ty],
+                      [0, 0, 1]])
+    return place @ turn @ centre
+
+
+def polygon_mask(rng, radius):
+    n = rng.integers(5, 9)
+    angles = np.sort(rng.uniform(0, 2 * np.pi, n))
+    radii = radius * rng.uniform(0.6, 1.0, n)
+    points = np.stack([radius + radii * np.cos(angles), radius + radii * np.sin(angles)], 1)
+    mask = np.zeros((2 * radius + 1, 2 * radius + 1), np.uint8)
+    cv2.fillPoly(mask, [points.astype(np.int32)], 255)
+    return cv2.GaussianBlur(mask, (3, 3), 0)
+
+
+def make_sequence(out, seed, davis):
+    rng = np.random.default_rng(seed)
+    motion = CAMERAS[seed % 6]
+    use_davis = davis is not None and (seed // 6) % 2 == 0
+    texture = davis_texture(rng, davis) if use_davis else fractal_texture(rng)
+    movers = []
+    for _ in range(rng.integers(1, 3)):
+        radius = int(rng.integers(18, 40))
+        top = rng.integers(0, texture.shape[0] - 2 * radius - 1)
+        left = rng.integers(0, texture.shape[1] - 2 * radius - 1)
+        skin = texture[top:top + 2 * radius + 1, left:left + 2 * radius + 1].copy()
+        heading = rng.uniform(0, 2 * np.pi)
+        velocity = rng.uniform(1, 3.5) * np.array([math.cos(heading), math.sin(heading)])
+        start = camera(motion, 0, texture.shape) @ np.array(
+            [rng.uniform(60, WIDTH - 60), rng.uniform(60, HEIGHT - 60), 1])
+        movers.append((polygon_mask(rng, radius), skin, start[:2] - radius, velocity))
+    name = f"indep-{'davis' if use_davis else 'fractal'}-{motion}-{seed}"
+    (out / name / "frames").mkdir(parents=True, exist_ok=True)
+    (out / name / "masks").mkdir(parents=True, exist_ok=True)
+    for t in range(FRAMES):
+        to_frame = np.linalg.inv(camera(motion, t, texture.shape))
+        frame = cv2.warpPerspective(texture, to_frame, (WIDTH, HEIGHT),
+                                    borderMode=cv2.BORDER_REFLECT).astype(np.float32)
+        truth = np.zeros((HEIGHT, WIDTH), np.float32)
+        for mask, skin, start, velocity in movers:
+            at = start + velocity * t
+            warp = to_frame @ np.array([[1, 0, at[0]], [0, 1, at[1]], [0, 0, 1]])
+            alpha = cv2.warpPerspective(mask, warp, (WIDTH, HEIGHT)).astype(np.float32) / 255
+            colour = cv2.warpPerspective(skin, warp, (WIDTH, HEIGHT)).astype(np.float32)
+            frame = frame * (1 - alpha[..., None]) + colour * alpha[..., None]
+            truth = np.maximum(truth, alpha)
+        gain = 1 + 0.1 * math.sin(2 * math.pi * t / FRAMES + seed)
+        frame = frame * gain + rng.normal(0, 2, frame.shape)
+        cv2.imwrite(str(out / name / "frames" / f"{t:05d}.png"),
+                    np.clip(frame, 0, 255).astype(np.uint8))
+        cv2.imwrite(str(out / name / "masks" / f"{t:05d}.png"), ((truth > 0.5) * 255).astype(np.uint8))
+    return name
+
+
+def seed_range(text):
+    first, _, last = text.partition("-")
+    return range(int(first), int(last or first) + 1)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("out", type=Path)
+    parser.add_argument("--seeds", type=seed_range, default=seed_range("0-23"))
+    parser.add_argument("--davis", help="folder of DAVIS sequences whose first frames are textures")
+    args = parser.parse_args()
+    if args.davis is not None and not Path(args.davis).is_dir():
+        sys.exit(f"indep_synth.py: no such folder: {args.davis}")
+    for seed in args.seeds:
+        print(make_sequence(args.out, seed, args.davis))
+
+
+if __name__ == "__main__":
+    main()
