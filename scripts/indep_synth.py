@@ -8,7 +8,7 @@ texture) moving 1-3.5 px a frame over the plane; sensor noise sigma 2 and a gain
 +-10 %. 40 frames of 320x240 each, OUT/<name>/frames/NNNNN.png and OUT/<name>/masks/NNNNN.png
 (0/255), the layout `movseg bench OUT` reads.
 
-  scripts/indep_synth.py OUT [--seeds 0-23] [--davis ../shared/data/davis2016]
+  scripts/indep_synth.py OUT [--seeds 0-47] [--davis ../shared/data/davis2016]
 
 Seed s chooses the camera (s % 6: static pan zoom rotate shake mix) and the texture (fractal,
 or with --davis every other six seeds a DAVIS frame); names are indep-<texture>-<camera>-<s>.
@@ -124,7 +124,7 @@ def seed_range(text):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("out", type=Path)
-    parser.add_argument("--seeds", type=seed_range, default=seed_range("0-23"))
+    parser.add_argument("--seeds", type=seed_range, default=seed_range("0-47"))
     parser.add_argument("--davis", help="folder of DAVIS sequences whose first frames are textures")
     args = parser.parse_args()
     if args.davis is not None and not Path(args.davis).is_dir():

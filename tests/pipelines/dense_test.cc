@@ -106,7 +106,7 @@ double smallCamouflagedMoverFound(double smoothness) {
 }
 
 // The cut keeps a new mover only where its evidence outweighs its outline's edges: with the
-// previous smoothness, 10, a small camouflaged mover was never found (docs/design.md).
+// previous smoothness, 10, this small camouflaged mover was never found (docs/design.md).
 TEST(Dense, ASmallCamouflagedMoverIsFound) {
   EXPECT_GT(smallCamouflagedMoverFound(Params().smoothness), 0.8);  // measured 0.94
   EXPECT_LT(smallCamouflagedMoverFound(10), 0.1);                     // measured 0
