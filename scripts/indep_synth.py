@@ -112,7 +112,8 @@ def make_sequence(out, seed, davis):
         frame = frame * gain + rng.normal(0, 2, frame.shape)
         cv2.imwrite(str(out / name / "frames" / f"{t:05d}.png"),
                     np.clip(frame, 0, 255).astype(np.uint8))
-        cv2.imwrite(str(out / name / "masks" / f"{t:05d}.png"), ((truth > 0.5) * 255).astype(np.uint8))
+        cv2.imwrite(str(out / name / "masks" / f"{t:05d}.png"),
+                    ((truth > 0.5) * 255).astype(np.uint8))
     return name
 
 
