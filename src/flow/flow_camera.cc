@@ -67,9 +67,8 @@ std::optional<cv::Vec3d> findEpipole(const FlowCamera& camera, cv::Size size,
     x.push_back(on_plane);
     y.push_back(camera.to[i]);
   }
-  if (x.size() < std::max(kMinOffPlane, static_cast<size_t>(kMinOffPlaneShare * camera.at.size()))) {
-    return std::nullopt;
-  }
+  const auto min_off_plane = static_cast<size_t>(kMinOffPlaneShare * camera.at.size());
+  if (x.size() < std::max(kMinOffPlane, min_off_plane)) return std::nullopt;
   const auto report = Ransac<EpipoleEstimator>(options).estimate(x, y, size, rng);
   if (!report.success || report.num_inliers < kMinEpipoleAgreement * x.size()) return std::nullopt;
   std::vector<double> residuals;

@@ -81,6 +81,11 @@ TEST(Dense, AMoverThatLeavesTheViewLeavesTheMask) {
   EXPECT_GT(gone_at, 0);
 }
 
+// Share of `region`'s pixels that `mask` marks.
+double shareMarked(const cv::Mat& mask, const cv::Mat& region) {
+  return cv::countNonZero(mask & region) / double(cv::countNonZero(region));
+}
+
 // A disc of radius 12 px cut from the scene's own texture (camouflaged: only its motion and,
 // here and there, its outline tell it apart) moves 2 px a frame while the camera pans 1 px a
 // frame. The share of the disc the mask finds, from frame 8 on, with `smoothness`.
@@ -93,6 +98,7 @@ double smallCamouflagedMoverFound(double smoothness) {
   params.smoothness = smoothness;
   Segmenter segmenter(params);
   double found = 0;
+  int counted = 0;
   for (int t = 0; t < 30; ++t) {
     cv::Mat frame = scene(cv::Rect(t, 0, 320, 240)).clone();
     const cv::Rect at(100 + 2 * t, 100, 25, 25);
@@ -100,9 +106,11 @@ double smallCamouflagedMoverFound(double smoothness) {
     cv::Mat truth = cv::Mat::zeros(frame.size(), CV_8U);
     disc.copyTo(truth(at));
     const cv::Mat mask = segmenter.process(frame).mask;
-    if (t >= 8) found += cv::countNonZero(mask & truth) / double(cv::countNonZero(truth)) / 22;
+    if (t < 8) continue;
+    found += shareMarked(mask, truth);
+    ++counted;
   }
-  return found;
+  return found / counted;
 }
 
 // The cut keeps a new mover only where its evidence outweighs its outline's edges: with the
@@ -140,7 +148,8 @@ DollyFrame dollyPastPosts(int t) {
   return frame;
 }
 
-// Share of `region`'s pixels that `mask` marks, over frames from 8 on of a 30-frame dolly.
+// Shares of the posts and of the mover that the mask marks, over frames from 8 on of a 30-frame
+// dolly, and the pairs that read depth.
 struct DollyScores {
   double posts_marked = 0, mover_found = 0;
   int parallax_pairs = 0, first_parallax = -1;
@@ -157,9 +166,8 @@ DollyScores segmentDolly(const Params& params) {
     if (result.diagnostics.parallax && scores.first_parallax < 0) scores.first_parallax = t;
     if (t < 8) continue;
     const cv::Mat posts = frame.posts & ~frame.mover;
-    scores.posts_marked += cv::countNonZero(result.mask & posts) / double(cv::countNonZero(posts));
-    scores.mover_found +=
-        cv::countNonZero(result.mask & frame.mover) / double(cv::countNonZero(frame.mover));
+    scores.posts_marked += shareMarked(result.mask, posts);
+    scores.mover_found += shareMarked(result.mask, frame.mover);
     ++counted;
   }
   scores.posts_marked /= counted;

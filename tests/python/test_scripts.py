@@ -7,6 +7,7 @@ import sys
 from pathlib import Path
 
 SOURCE = Path(os.environ.get("MOVSEG_SOURCE_DIR", Path(__file__).resolve().parents[2]))
+INDEP_SYNTH = str(SOURCE / "scripts" / "indep_synth.py")
 
 
 def test_group_means_averages_each_group_over_cameras_and_seeds(tmp_path):
@@ -38,8 +39,8 @@ def test_synth_sets_names_each_seed(tmp_path):
 
 
 def test_indep_synth_makes_frames_with_masks_of_small_movers(tmp_path):
-    subprocess.run([sys.executable, str(SOURCE / "scripts" / "indep_synth.py"), str(tmp_path),
-                    "--seeds", "7"], check=True, capture_output=True)
+    subprocess.run([sys.executable, INDEP_SYNTH, str(tmp_path), "--seeds", "7"], check=True,
+                   capture_output=True)
     import cv2
     import numpy as np
     clip = tmp_path / "indep-fractal-pan-7"
@@ -54,7 +55,7 @@ def test_indep_synth_makes_frames_with_masks_of_small_movers(tmp_path):
 
 
 def test_indep_synth_refuses_a_missing_davis_folder(tmp_path):
-    run = subprocess.run([sys.executable, str(SOURCE / "scripts" / "indep_synth.py"), str(tmp_path),
-                          "--davis", str(tmp_path / "nothing")], capture_output=True, text=True)
+    run = subprocess.run([sys.executable, INDEP_SYNTH, str(tmp_path), "--davis",
+                          str(tmp_path / "nothing")], capture_output=True, text=True)
     assert run.returncode != 0 and "no such folder" in run.stderr
     assert not any(tmp_path.iterdir())
