@@ -8,10 +8,14 @@ texture) moving 1-3.5 px a frame over the plane; sensor noise sigma 2 and a gain
 +-10 %. 40 frames of 320x240 each, OUT/<name>/frames/NNNNN.png and OUT/<name>/masks/NNNNN.png
 (0/255), the layout `movseg bench OUT` reads.
 
-  scripts/indep_synth.py OUT [--seeds 0-47] [--davis ../shared/data/davis2016]
+  scripts/indep_synth.py OUT [--seeds 0-47] [--davis ../shared/data/davis2016] [--cameras dolly]
 
 Seed s chooses the camera (s % 6: static pan zoom rotate shake mix) and the texture (fractal,
 or with --davis every other six seeds a DAVIS frame); names are indep-<texture>-<camera>-<s>.
+--cameras picks from another list: `dolly` is a 3-D scene instead of a plane — a camera moving
+sideways (and a little forwards) 1.5 m above a ground plane, a wall 20 m away, two to four static
+posts 4-10 m away that shift 1-4 px a frame more than the wall, and the movers at 6-15 m, hidden
+where a post stands in front of them (render_dolly: every pixel's ray meets the nearest surface).
 """
 import argparse
 import math
@@ -24,6 +28,10 @@ import numpy as np
 
 WIDTH, HEIGHT, FRAMES = 320, 240, 40
 CAMERAS = ["static", "pan", "zoom", "rotate", "shake", "mix"]
+# The dolly's pinhole camera (pixels) and its scene (metres; x right, y down, z forwards).
+FOCAL, HORIZON = 300.0, HEIGHT / 2
+EYE_HEIGHT, WALL_DEPTH, TEXELS_PER_METRE = 1.5, 20.0, 40.0
+STEP = np.array([0.05, 0.0, 0.02])  # camera travel per frame
 
 
 def fractal_texture(rng, size=1024):
@@ -77,11 +85,94 @@ def polygon_mask(rng, radius):
     return cv2.GaussianBlur(mask, (3, 3), 0)
 
 
-def make_sequence(out, seed, davis):
-    rng = np.random.default_rng(seed)
-    motion = CAMERAS[seed % 6]
-    use_davis = davis is not None and (seed // 6) % 2 == 0
-    texture = davis_texture(rng, davis) if use_davis else fractal_texture(rng)
+def dolly_scene(rng, texture):
+    """Posts and movers of a dolly sequence: (depth, x range, y range, skin) in metres and
+    pixels; a mover also has its velocity in metres per frame and its polygon mask."""
+    posts = []
+    for _ in range(rng.integers(2, 5)):
+        depth, width, tall = rng.uniform(4, 10), rng.uniform(0.2, 0.5), rng.uniform(1.5, 3.5)
+        left = rng.uniform(-0.4, 0.5) * depth + 1  # in view for most of the travel
+        posts.append((depth, (left, left + width), (EYE_HEIGHT - tall, EYE_HEIGHT)))
+    movers = []
+    for _ in range(rng.integers(1, 3)):
+        radius = int(rng.integers(18, 40))
+        depth = rng.uniform(6, 15)
+        top = rng.integers(0, texture.shape[0] - 2 * radius - 1)
+        left = rng.integers(0, texture.shape[1] - 2 * radius - 1)
+        skin = texture[top:top + 2 * radius + 1, left:left + 2 * radius + 1].copy()
+        heading = rng.uniform(0, 2 * np.pi)
+        speed = rng.uniform(1, 3.5) * depth / FOCAL  # 1-3.5 px a frame at its depth
+        velocity = speed * np.array([math.cos(heading), math.sin(heading)])
+        centre = np.array([rng.uniform(-0.2, 0.6), rng.uniform(-0.12, 0.12)]) * depth
+        movers.append((depth, centre, velocity, polygon_mask(rng, radius), skin))
+    return posts, movers
+
+
+def mirrored(coordinate, size):
+    """Texture coordinates beyond the texture reflected back into it: tiles without seams."""
+    period = 2 * (size - 1)
+    return ((size - 1) - np.abs(np.mod(coordinate, period) - (size - 1))).astype(np.float32)
+
+
+def render_dolly(texture, posts, movers, t):
+    """Frame t of a dolly sequence and its movers' coverage: each pixel's ray meets the wall,
+    the ground or a post, whichever is nearest; a mover is drawn where it is nearer still.
+    Rendered at twice the size and averaged down, as a sensor integrates over its pixel."""
+    eye = STEP * t
+    x, y = np.meshgrid((np.arange(2 * WIDTH, dtype=np.float32) - 0.5) / 2,
+                       (np.arange(2 * HEIGHT, dtype=np.float32) - 0.5) / 2)
+    rx, ry = (x - WIDTH / 2) / FOCAL, (y - HORIZON) / FOCAL  # ray direction per unit depth
+    with np.errstate(divide="ignore"):
+        ground = np.where(ry > 0, EYE_HEIGHT / ry, np.inf)
+    depth = np.minimum(ground, WALL_DEPTH - eye[2])
+    on_ground = ground < WALL_DEPTH - eye[2]
+    # texture coordinates: the wall by (x, y), the ground by (x, z), in world metres
+    u = (eye[0] + rx * depth) * TEXELS_PER_METRE
+    v = np.where(on_ground, (eye[2] + depth) * TEXELS_PER_METRE,
+                 ry * depth * TEXELS_PER_METRE + texture.shape[0] / 2)
+    for z, (left, right), (top, bottom) in posts:
+        d = z - eye[2]
+        wx, wy = eye[0] + rx * d, ry * d
+        hit = (wx >= left) & (wx <= right) & (wy >= top) & (wy <= bottom) & (d < depth)
+        depth = np.where(hit, d, depth)
+        u = np.where(hit, (wx - left) * TEXELS_PER_METRE + 300 * z, u)
+        v = np.where(hit, wy * TEXELS_PER_METRE + 300, v)
+    frame = cv2.remap(texture, mirrored(u, texture.shape[1]), mirrored(v, texture.shape[0]),
+                      cv2.INTER_LINEAR).astype(np.float32)
+    truth = np.zeros(x.shape, np.float32)
+    for z, centre, velocity, mask, skin in movers:
+        d = z - eye[2]
+        at = centre + velocity * t
+        radius = mask.shape[0] // 2
+        corner = ((at[0] - eye[0]) * FOCAL / d + WIDTH / 2 - radius,
+                  at[1] * FOCAL / d + HORIZON - radius)
+        place = np.float32([[2, 0, 2 * corner[0] + 0.5], [0, 2, 2 * corner[1] + 0.5]])
+        alpha = cv2.warpAffine(mask, place, x.shape[::-1]).astype(np.float32) / 255
+        alpha *= d < depth
+        colour = cv2.warpAffine(skin, place, x.shape[::-1]).astype(np.float32)
+        frame = frame * (1 - alpha[..., None]) + colour * alpha[..., None]
+        truth = np.maximum(truth, alpha)
+    return (cv2.resize(frame, (WIDTH, HEIGHT), interpolation=cv2.INTER_AREA),
+            cv2.resize(truth, (WIDTH, HEIGHT), interpolation=cv2.INTER_AREA))
+
+
+def render_plane(texture, movers, motion, t):
+    """Frame t of a plane seen by `motion`, and its movers' coverage."""
+    to_frame = np.linalg.inv(camera(motion, t, texture.shape))
+    frame = cv2.warpPerspective(texture, to_frame, (WIDTH, HEIGHT),
+                                borderMode=cv2.BORDER_REFLECT).astype(np.float32)
+    truth = np.zeros((HEIGHT, WIDTH), np.float32)
+    for mask, skin, start, velocity in movers:
+        at = start + velocity * t
+        warp = to_frame @ np.array([[1, 0, at[0]], [0, 1, at[1]], [0, 0, 1]])
+        alpha = cv2.warpPerspective(mask, warp, (WIDTH, HEIGHT)).astype(np.float32) / 255
+        colour = cv2.warpPerspective(skin, warp, (WIDTH, HEIGHT)).astype(np.float32)
+        frame = frame * (1 - alpha[..., None]) + colour * alpha[..., None]
+        truth = np.maximum(truth, alpha)
+    return frame, truth
+
+
+def plane_movers(rng, texture, motion):
     movers = []
     for _ in range(rng.integers(1, 3)):
         radius = int(rng.integers(18, 40))
@@ -93,21 +184,25 @@ def make_sequence(out, seed, davis):
         start = camera(motion, 0, texture.shape) @ np.array(
             [rng.uniform(60, WIDTH - 60), rng.uniform(60, HEIGHT - 60), 1])
         movers.append((polygon_mask(rng, radius), skin, start[:2] - radius, velocity))
+    return movers
+
+
+def make_sequence(out, seed, davis, cameras):
+    rng = np.random.default_rng(seed)
+    motion = cameras[seed % len(cameras)]
+    use_davis = davis is not None and (seed // 6) % 2 == 0
+    texture = davis_texture(rng, davis) if use_davis else fractal_texture(rng)
+    if motion == "dolly":
+        posts, movers = dolly_scene(rng, texture)
+        render = lambda t: render_dolly(texture, posts, movers, t)
+    else:
+        movers = plane_movers(rng, texture, motion)
+        render = lambda t: render_plane(texture, movers, motion, t)
     name = f"indep-{'davis' if use_davis else 'fractal'}-{motion}-{seed}"
     (out / name / "frames").mkdir(parents=True, exist_ok=True)
     (out / name / "masks").mkdir(parents=True, exist_ok=True)
     for t in range(FRAMES):
-        to_frame = np.linalg.inv(camera(motion, t, texture.shape))
-        frame = cv2.warpPerspective(texture, to_frame, (WIDTH, HEIGHT),
-                                    borderMode=cv2.BORDER_REFLECT).astype(np.float32)
-        truth = np.zeros((HEIGHT, WIDTH), np.float32)
-        for mask, skin, start, velocity in movers:
-            at = start + velocity * t
-            warp = to_frame @ np.array([[1, 0, at[0]], [0, 1, at[1]], [0, 0, 1]])
-            alpha = cv2.warpPerspective(mask, warp, (WIDTH, HEIGHT)).astype(np.float32) / 255
-            colour = cv2.warpPerspective(skin, warp, (WIDTH, HEIGHT)).astype(np.float32)
-            frame = frame * (1 - alpha[..., None]) + colour * alpha[..., None]
-            truth = np.maximum(truth, alpha)
+        frame, truth = render(t)
         gain = 1 + 0.1 * math.sin(2 * math.pi * t / FRAMES + seed)
         frame = frame * gain + rng.normal(0, 2, frame.shape)
         cv2.imwrite(str(out / name / "frames" / f"{t:05d}.png"),
@@ -122,16 +217,27 @@ def seed_range(text):
     return range(int(first), int(last or first) + 1)
 
 
+def camera_list(text):
+    cameras = text.split(",")
+    unknown = [c for c in cameras if c not in CAMERAS + ["dolly"]]
+    if unknown:
+        raise argparse.ArgumentTypeError(f"no such camera: {', '.join(unknown)}")
+    return cameras
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("out", type=Path)
     parser.add_argument("--seeds", type=seed_range, default=seed_range("0-47"))
     parser.add_argument("--davis", help="folder of DAVIS sequences whose first frames are textures")
+    parser.add_argument("--cameras", type=camera_list, default=CAMERAS,
+                        help=f"camera motions seed by seed (default {','.join(CAMERAS)}; "
+                             "also: dolly)")
     args = parser.parse_args()
     if args.davis is not None and not Path(args.davis).is_dir():
         sys.exit(f"indep_synth.py: no such folder: {args.davis}")
     for seed in args.seeds:
-        print(make_sequence(args.out, seed, args.davis))
+        print(make_sequence(args.out, seed, args.davis, args.cameras))
 
 
 if __name__ == "__main__":

@@ -59,3 +59,26 @@ def test_indep_synth_refuses_a_missing_davis_folder(tmp_path):
                           str(tmp_path / "nothing")], capture_output=True, text=True)
     assert run.returncode != 0 and "no such folder" in run.stderr
     assert not any(tmp_path.iterdir())
+
+
+def test_indep_synth_dolly_is_a_3d_scene_the_plane_cannot_explain(tmp_path):
+    subprocess.run([sys.executable, INDEP_SYNTH, str(tmp_path), "--seeds", "7", "--cameras",
+                    "dolly"], check=True, capture_output=True)
+    import cv2
+    import numpy as np
+    clip = tmp_path / "indep-fractal-dolly-7"
+    frames = [cv2.imread(str(p), 0).astype(np.float32)
+              for p in sorted((clip / "frames").iterdir())[:2]]
+    # The wall (top rows, 20 m) shifts less than the ground at the bottom (under 4 m): parallax.
+    wall, _ = cv2.phaseCorrelate(frames[0][:80], frames[1][:80])
+    ground, _ = cv2.phaseCorrelate(frames[0][200:], frames[1][200:])
+    assert abs(ground[0]) > 2 * abs(wall[0]) > 0.5
+    masks = [cv2.imread(str(p), 0) for p in sorted((clip / "masks").iterdir())]
+    assert len(masks) == 40 and sum(np.count_nonzero(m) > 0 for m in masks) >= 20
+
+
+def test_indep_synth_refuses_an_unknown_camera(tmp_path):
+    run = subprocess.run([sys.executable, INDEP_SYNTH, str(tmp_path), "--cameras", "pan,crane"],
+                         capture_output=True, text=True)
+    assert run.returncode != 0 and "no such camera: crane" in run.stderr
+    assert not any(tmp_path.iterdir())
