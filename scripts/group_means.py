@@ -3,7 +3,8 @@
 
 Usage: scripts/group_means.py BENCH.json
 
-A group is a set's name without its camera and seed (std, camo, depth, depth-camo); each
+A group is a set's name without its camera and seed (std, camo, depth, depth-camo), or for
+scripts/indep_synth.py's sequences their camera (indep-pan: both textures, every seed); each
 sequence weighs the same. Prints one Markdown table: a row per group, a column per method, the
 lowest sequence of each group beside its mean.
 """
@@ -14,7 +15,11 @@ from collections import defaultdict
 
 
 def group_of(sequence):
-    """'depth-camo-dolly-s8' -> 'depth-camo', 'std-pan' -> 'std'."""
+    """'depth-camo-dolly-s8' -> 'depth-camo', 'std-pan' -> 'std', 'indep-davis-pan-13' ->
+    'indep-pan'."""
+    independent = re.fullmatch(r"indep-(?:fractal|davis)-(\w+)-\d+", sequence)
+    if independent:
+        return f"indep-{independent.group(1)}"
     name = re.sub(r"-s\d+$", "", sequence)
     return name.rsplit("-", 1)[0]
 

@@ -26,6 +26,17 @@ def test_group_means_averages_each_group_over_cameras_and_seeds(tmp_path):
     assert "| depth-camo | 1 | 0.200 (0.20 depth-camo-dolly-s7) |" in table["depth-camo"]
 
 
+def test_group_means_groups_independent_sequences_by_camera(tmp_path):
+    rows = [{"sequence": name, "method": "dense", "J": j} for name, j in [
+        ("indep-fractal-pan-7", 0.9), ("indep-davis-pan-13", 0.5), ("indep-davis-dolly-2", 0.1)]]
+    report = tmp_path / "bench.json"
+    report.write_text(json.dumps({"rows": rows}))
+    out = subprocess.run([sys.executable, str(SOURCE / "scripts" / "group_means.py"), str(report)],
+                         capture_output=True, text=True, check=True).stdout.splitlines()
+    assert "| indep-pan | 2 | 0.700 (0.50 indep-davis-pan-13) |" in out
+    assert "| indep-dolly | 1 | 0.100 (0.10 indep-davis-dolly-2) |" in out
+
+
 def test_synth_sets_names_each_seed(tmp_path):
     cli = os.environ["MOVSEG_CLI"]
     subprocess.run(["bash", str(SOURCE / "scripts" / "synth_sets.sh"), str(tmp_path / "two"), "3",
