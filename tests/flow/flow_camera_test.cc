@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
+
 #include <opencv2/imgproc.hpp>
 
 #include "motion/model.h"
@@ -56,6 +58,38 @@ TEST(FlowCamera, FitsTheCameraAroundAMarkedMoverAndLeavesItsMotionAsResidual) {
   EXPECT_NEAR(residual.at<float>(55, 75), 5.0, 0.01);  // |(4, -3)|
   EXPECT_NEAR(residual.at<float>(10, 10), 0.0, 0.01);
   EXPECT_NEAR(residual.at<float>(110, 150), 0.0, 0.01);
+}
+
+// A camera moving sideways: the far wall's flow (current -> previous) is 2 px to the right, and
+// the lowest 30 % of the rows, a strip too small to show depth everywhere (under 28 cells), move
+// `strip(y)`. Returns the fit's reading of depth.
+bool readsDepth(const std::function<cv::Point2f(int)>& strip) {
+  const cv::Size size(160, 120);
+  const int strip_top = 84;
+  cv::Mat flow(size, CV_32FC2);
+  for (int y = 0; y < size.height; ++y) {
+    const cv::Point2f f = y < strip_top ? cv::Point2f(2, 0) : strip(y - strip_top);
+    for (int x = 0; x < size.width; ++x) flow.at<cv::Vec2f>(y, x) = cv::Vec2f(f.x, f.y);
+  }
+  cv::RNG rng(1);
+  const Params params;
+  const std::vector<GridSample> samples =
+      gridSamples(test::greyTexture(size, 4), params.flow_sample_step);
+  const FlowCamera fit = fitFlowCamera(flow, samples, cv::Mat(), params, rng);
+  EXPECT_FALSE(fit.fallback);
+  return fit.epipole.has_value();
+}
+
+// Near ground below the wall moves with it, only further the nearer (parallax 1.5 to 4.3 px):
+// depth, read although it covers little of the view.
+TEST(FlowCamera, NearGroundMovingWithThePlaneIsDepth) {
+  EXPECT_TRUE(readsDepth([](int row) { return cv::Point2f(3.5f + 0.08f * row, 0); }));
+}
+
+// The same strip standing still in the image — a mover the camera follows — moves against the
+// plane: not depth, however well its motion agrees on an epipole.
+TEST(FlowCamera, AMoverTheCameraFollowsIsNotDepth) {
+  EXPECT_FALSE(readsDepth([](int) { return cv::Point2f(0, 0); }));
 }
 
 }  // namespace
