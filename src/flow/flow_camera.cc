@@ -78,6 +78,23 @@ bool shows(const DepthRule& rule, double share, int cells, double with_plane) {
   return share >= rule.share && cells >= rule.cells && with_plane >= rule.with_plane;
 }
 
+// Of the off-plane samples x -> y that agree on the epipole (residuals within the inlier
+// distance), the share displaced the way the plane displaces them (plane_step), by more than
+// the inlier distance.
+double shareWithThePlane(const std::vector<cv::Point2f>& x, const std::vector<cv::Point2f>& y,
+                         const std::vector<cv::Point2f>& plane_step,
+                         const std::vector<double>& residuals, const RansacOptions& options) {
+  const double inlier = options.max_error * options.max_error;
+  size_t agreeing = 0, with_plane = 0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    if (residuals[i] > inlier) continue;
+    ++agreeing;
+    with_plane += (y[i] - x[i]).dot(plane_step[i]) > 0 &&
+                  cv::norm(plane_step[i]) > options.max_error;
+  }
+  return agreeing == 0 ? 0.0 : static_cast<double>(with_plane) / static_cast<double>(agreeing);
+}
+
 std::optional<cv::Vec3d> findEpipole(const FlowCamera& camera, cv::Size size,
                                      const RansacOptions& options, cv::RNG& rng) {
   std::vector<cv::Point2f> x, y, plane_step;
@@ -94,17 +111,10 @@ std::optional<cv::Vec3d> findEpipole(const FlowCamera& camera, cv::Size size,
   if (!report.success || report.num_inliers < kMinEpipoleAgreement * x.size()) return std::nullopt;
   std::vector<double> residuals;
   EpipoleEstimator::residuals(x, y, report.model, &residuals);
-  const double inlier = options.max_error * options.max_error;
-  const int cells = CoverageSupportMeasurer(x, size).evaluate(residuals, inlier).cells;
-  size_t agreeing = 0, with_plane = 0;
-  for (size_t i = 0; i < x.size(); ++i) {
-    if (residuals[i] > inlier) continue;
-    ++agreeing;
-    with_plane += (y[i] - x[i]).dot(plane_step[i]) > 0 &&
-                  cv::norm(plane_step[i]) > options.max_error;
-  }
-  const double with_share =
-      agreeing == 0 ? 0.0 : static_cast<double>(with_plane) / static_cast<double>(agreeing);
+  const int cells = CoverageSupportMeasurer(x, size)
+                        .evaluate(residuals, options.max_error * options.max_error)
+                        .cells;
+  const double with_share = shareWithThePlane(x, y, plane_step, residuals, options);
   if (!shows(kDepthEverywhere, share, cells, with_share) &&
       !shows(kDepthWithThePlane, share, cells, with_share)) {
     return std::nullopt;
