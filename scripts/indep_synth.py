@@ -85,6 +85,18 @@ def polygon_mask(rng, radius):
     return cv2.GaussianBlur(mask, (3, 3), 0)
 
 
+def skin_from(rng, texture, radius):
+    """A square of the texture, 2 radius + 1 on a side, from anywhere in it: camouflage."""
+    top = rng.integers(0, texture.shape[0] - 2 * radius - 1)
+    left = rng.integers(0, texture.shape[1] - 2 * radius - 1)
+    return texture[top:top + 2 * radius + 1, left:left + 2 * radius + 1].copy()
+
+
+def composite(frame, truth, alpha, colour):
+    """A mover of coverage `alpha` and colour `colour` laid over the frame and its truth."""
+    return frame * (1 - alpha[..., None]) + colour * alpha[..., None], np.maximum(truth, alpha)
+
+
 def dolly_scene(rng, texture):
     """Posts and movers of a dolly sequence: (depth, x range, y range, skin) in metres and
     pixels; a mover also has its velocity in metres per frame and its polygon mask."""
@@ -97,9 +109,7 @@ def dolly_scene(rng, texture):
     for _ in range(rng.integers(1, 3)):
         radius = int(rng.integers(18, 40))
         depth = rng.uniform(6, 15)
-        top = rng.integers(0, texture.shape[0] - 2 * radius - 1)
-        left = rng.integers(0, texture.shape[1] - 2 * radius - 1)
-        skin = texture[top:top + 2 * radius + 1, left:left + 2 * radius + 1].copy()
+        skin = skin_from(rng, texture, radius)
         heading = rng.uniform(0, 2 * np.pi)
         speed = rng.uniform(1, 3.5) * depth / FOCAL  # 1-3.5 px a frame at its depth
         velocity = speed * np.array([math.cos(heading), math.sin(heading)])
@@ -150,8 +160,7 @@ def render_dolly(texture, posts, movers, t):
         alpha = cv2.warpAffine(mask, place, x.shape[::-1]).astype(np.float32) / 255
         alpha *= d < depth
         colour = cv2.warpAffine(skin, place, x.shape[::-1]).astype(np.float32)
-        frame = frame * (1 - alpha[..., None]) + colour * alpha[..., None]
-        truth = np.maximum(truth, alpha)
+        frame, truth = composite(frame, truth, alpha, colour)
     return (cv2.resize(frame, (WIDTH, HEIGHT), interpolation=cv2.INTER_AREA),
             cv2.resize(truth, (WIDTH, HEIGHT), interpolation=cv2.INTER_AREA))
 
@@ -167,8 +176,7 @@ def render_plane(texture, movers, motion, t):
         warp = to_frame @ np.array([[1, 0, at[0]], [0, 1, at[1]], [0, 0, 1]])
         alpha = cv2.warpPerspective(mask, warp, (WIDTH, HEIGHT)).astype(np.float32) / 255
         colour = cv2.warpPerspective(skin, warp, (WIDTH, HEIGHT)).astype(np.float32)
-        frame = frame * (1 - alpha[..., None]) + colour * alpha[..., None]
-        truth = np.maximum(truth, alpha)
+        frame, truth = composite(frame, truth, alpha, colour)
     return frame, truth
 
 
@@ -176,9 +184,7 @@ def plane_movers(rng, texture, motion):
     movers = []
     for _ in range(rng.integers(1, 3)):
         radius = int(rng.integers(18, 40))
-        top = rng.integers(0, texture.shape[0] - 2 * radius - 1)
-        left = rng.integers(0, texture.shape[1] - 2 * radius - 1)
-        skin = texture[top:top + 2 * radius + 1, left:left + 2 * radius + 1].copy()
+        skin = skin_from(rng, texture, radius)
         heading = rng.uniform(0, 2 * np.pi)
         velocity = rng.uniform(1, 3.5) * np.array([math.cos(heading), math.sin(heading)])
         start = camera(motion, 0, texture.shape) @ np.array(
