@@ -145,6 +145,7 @@ def render_dolly(texture, posts, movers, t):
         wx, wy = eye[0] + rx * d, ry * d
         hit = (wx >= left) & (wx <= right) & (wy >= top) & (wy <= bottom) & (d < depth)
         depth = np.where(hit, d, depth)
+        # a post's skin: texture rows up to 300, columns 300 texels on per metre of its depth
         u = np.where(hit, (wx - left) * TEXELS_PER_METRE + 300 * z, u)
         v = np.where(hit, wy * TEXELS_PER_METRE + 300, v)
     frame = cv2.remap(texture, mirrored(u, texture.shape[1]), mirrored(v, texture.shape[0]),

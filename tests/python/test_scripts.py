@@ -10,16 +10,22 @@ SOURCE = Path(os.environ.get("MOVSEG_SOURCE_DIR", Path(__file__).resolve().paren
 INDEP_SYNTH = str(SOURCE / "scripts" / "indep_synth.py")
 
 
+def group_means(tmp_path, rows):
+    """The lines scripts/group_means.py prints for a bench report of `rows`."""
+    report = tmp_path / "bench.json"
+    report.write_text(json.dumps({"rows": rows}))
+    return subprocess.run([sys.executable, str(SOURCE / "scripts" / "group_means.py"),
+                           str(report)], capture_output=True, text=True,
+                          check=True).stdout.splitlines()
+
+
 def test_group_means_averages_each_group_over_cameras_and_seeds(tmp_path):
     rows = [{"sequence": name, "method": method, "J": j} for name, method, j in [
         ("std-pan-s7", "dense", 0.9), ("std-zoom-s8", "dense", 0.7),
         ("depth-camo-dolly-s7", "dense", 0.2), ("depth-dolly-s7", "dense", 0.6),
         ("std-pan-s7", "paper", 0.5), ("std-zoom-s8", "paper", 0.3),
         ("depth-camo-dolly-s7", "paper", 0.1), ("depth-dolly-s7", "paper", 0.4)]]
-    report = tmp_path / "bench.json"
-    report.write_text(json.dumps({"rows": rows}))
-    out = subprocess.run([sys.executable, str(SOURCE / "scripts" / "group_means.py"), str(report)],
-                         capture_output=True, text=True, check=True).stdout.splitlines()
+    out = group_means(tmp_path, rows)
     table = {line.split("|")[1].strip(): line for line in out[2:]}
     assert set(table) == {"std", "depth", "depth-camo"}  # depth-camo is not depth's
     assert "| std | 2 | 0.800 (0.70 std-zoom-s8) | 0.400 (0.30 std-zoom-s8) |" in out
@@ -29,10 +35,7 @@ def test_group_means_averages_each_group_over_cameras_and_seeds(tmp_path):
 def test_group_means_groups_independent_sequences_by_camera(tmp_path):
     rows = [{"sequence": name, "method": "dense", "J": j} for name, j in [
         ("indep-fractal-pan-7", 0.9), ("indep-davis-pan-13", 0.5), ("indep-davis-dolly-2", 0.1)]]
-    report = tmp_path / "bench.json"
-    report.write_text(json.dumps({"rows": rows}))
-    out = subprocess.run([sys.executable, str(SOURCE / "scripts" / "group_means.py"), str(report)],
-                         capture_output=True, text=True, check=True).stdout.splitlines()
+    out = group_means(tmp_path, rows)
     assert "| indep-pan | 2 | 0.700 (0.50 indep-davis-pan-13) |" in out
     assert "| indep-dolly | 1 | 0.100 (0.10 indep-davis-dolly-2) |" in out
 
