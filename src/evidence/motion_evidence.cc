@@ -99,6 +99,33 @@ void carryMask(const cv::Mat& previous_mask, const cv::Mat& flow_map, cv::Mat* c
             cv::BORDER_CONSTANT, cv::Scalar(0));
 }
 
+namespace {
+
+bool isUncovered(uchar carried, uchar under_camera) { return under_camera > 127 && carried <= 127; }
+
+}  // namespace
+
+void uncoveredPixels(const cv::Mat& carried, const cv::Mat& under_camera, cv::Mat* uncovered) {
+  uncovered->create(carried.size(), CV_8U);
+  for (int y = 0; y < carried.rows; ++y) {
+    const uchar* c = carried.ptr<uchar>(y);
+    const uchar* u = under_camera.ptr<uchar>(y);
+    uchar* out = uncovered->ptr<uchar>(y);
+    for (int x = 0; x < carried.cols; ++x) out[x] = isUncovered(c[x], u[x]) ? 255 : 0;
+  }
+}
+
+void dropUncovered(const cv::Mat& carried, const cv::Mat& under_camera, cv::Mat* evidence) {
+  for (int y = 0; y < evidence->rows; ++y) {
+    const uchar* c = carried.ptr<uchar>(y);
+    const uchar* u = under_camera.ptr<uchar>(y);
+    float* e = evidence->ptr<float>(y);
+    for (int x = 0; x < evidence->cols; ++x) {
+      if (isUncovered(c[x], u[x])) e[x] = std::min(e[x], 0.f);
+    }
+  }
+}
+
 void addMemory(const cv::Mat& carried, const Params& params, cv::Mat* evidence) {
   // log(p / (1 - p)) per 8-bit level of the carried mask, p softened towards one half.
   const auto floor = static_cast<float>(params.memory_floor);

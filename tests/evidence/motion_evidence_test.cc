@@ -79,5 +79,34 @@ TEST(MotionEvidence, TheCarriedMaskFollowsTheFlow) {
   EXPECT_EQ(cv::countNonZero(carried), 64);
 }
 
+// A mover at columns 30-59 of the previous frame moved 3 px right, the camera still. DIS gives
+// the mover's flow also to the 8 columns behind it (22-29 now): of those, 30-32 were hidden by
+// the mover and are uncovered — the flow leads them out of the previous mask — while 25-29
+// were seen and stay as they are, as does the mover itself (its flow leads into the mask).
+TEST(MotionEvidence, PositiveEvidenceIsDroppedWhereTheMoverUncoveredTheBackground) {
+  const cv::Size size(80, 20);
+  cv::Mat previous_mask(size, CV_8U, cv::Scalar(0));
+  previous_mask.colRange(30, 60).setTo(255);
+  cv::Mat flow = uniformFlow(size, {0, 0});
+  flow.colRange(25, 63).setTo(cv::Scalar(-3, 0));  // the mover, now 33-62, and its smear
+  cv::Mat flow_map, camera_map, carried, under_camera;
+  flowMap(flow, &flow_map);
+  cameraMap(cv::Matx33d::eye(), size, &camera_map);
+  carryMask(previous_mask, flow_map, &carried);
+  carryMask(previous_mask, camera_map, &under_camera);
+  cv::Mat evidence(size, CV_32F, cv::Scalar(2));
+  evidence.at<float>(5, 31) = -1;
+  dropUncovered(carried, under_camera, &evidence);
+
+  cv::Mat uncovered;
+  uncoveredPixels(carried, under_camera, &uncovered);
+  EXPECT_EQ(cv::countNonZero(uncovered), 3 * size.height);
+  EXPECT_EQ(cv::countNonZero(uncovered.colRange(30, 33)), 3 * size.height);
+  EXPECT_EQ(cv::countNonZero(evidence.colRange(30, 33)), 1);  // zero but the negative one
+  EXPECT_FLOAT_EQ(evidence.at<float>(5, 31), -1.f);
+  EXPECT_EQ(cv::countNonZero(evidence.colRange(0, 30) != 2), 0);
+  EXPECT_EQ(cv::countNonZero(evidence.colRange(33, 80) != 2), 0);
+}
+
 }  // namespace
 }  // namespace movseg
