@@ -101,27 +101,38 @@ void carryMask(const cv::Mat& previous_mask, const cv::Mat& flow_map, cv::Mat* c
 
 namespace {
 
-bool isUncovered(uchar carried, uchar under_camera) { return under_camera > 127 && carried <= 127; }
+// Whether the previous frame's mover hid what the camera puts at a pixel: the previous mask
+// (CV_8U 0/255) at the nearest pixel to `at`, the pixel's place in the previous frame.
+bool hiddenThere(const cv::Mat& previous_mask, const cv::Point2f& at) {
+  const int x = cvRound(at.x), y = cvRound(at.y);
+  return x >= 0 && y >= 0 && x < previous_mask.cols && y < previous_mask.rows &&
+         previous_mask.at<uchar>(y, x) > 127;
+}
 
 }  // namespace
 
-void uncoveredPixels(const cv::Mat& carried, const cv::Mat& under_camera, cv::Mat* uncovered) {
+void uncoveredPixels(const cv::Mat& carried, const cv::Mat& previous_mask,
+                     const cv::Mat& camera_map, cv::Mat* uncovered) {
   uncovered->create(carried.size(), CV_8U);
   for (int y = 0; y < carried.rows; ++y) {
     const uchar* c = carried.ptr<uchar>(y);
-    const uchar* u = under_camera.ptr<uchar>(y);
+    const auto* at = camera_map.ptr<cv::Point2f>(y);
     uchar* out = uncovered->ptr<uchar>(y);
-    for (int x = 0; x < carried.cols; ++x) out[x] = isUncovered(c[x], u[x]) ? 255 : 0;
+    for (int x = 0; x < carried.cols; ++x) {
+      out[x] = c[x] <= 127 && hiddenThere(previous_mask, at[x]) ? 255 : 0;
+    }
   }
 }
 
-void dropUncovered(const cv::Mat& carried, const cv::Mat& under_camera, cv::Mat* evidence) {
+void dropUncovered(const cv::Mat& carried, const cv::Mat& previous_mask, const cv::Mat& camera_map,
+                   cv::Mat* evidence) {
   for (int y = 0; y < evidence->rows; ++y) {
     const uchar* c = carried.ptr<uchar>(y);
-    const uchar* u = under_camera.ptr<uchar>(y);
+    const auto* at = camera_map.ptr<cv::Point2f>(y);
     float* e = evidence->ptr<float>(y);
     for (int x = 0; x < evidence->cols; ++x) {
-      if (isUncovered(c[x], u[x])) e[x] = std::min(e[x], 0.f);
+      // Only positive evidence is dropped: the mask is looked up where there is some.
+      if (e[x] > 0 && c[x] <= 127 && hiddenThere(previous_mask, at[x])) e[x] = 0;
     }
   }
 }

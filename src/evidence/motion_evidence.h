@@ -39,19 +39,21 @@ class PhotometricCheck {
 // Positive evidence scaled by the confirmation (CV_32F, [0, 1]); negative evidence is kept.
 void confirmMotion(const cv::Mat& confirmation, cv::Mat* evidence);
 
-// The previous frame's mask (CV_8U 0/255) carried to the current frame through a map (flowMap()
-// or cameraMap()), interpolated (CV_8U); where the map leaves the previous frame, 0.
+// The previous frame's mask (CV_8U 0/255) carried to the current frame through the flow's map
+// (flowMap()), interpolated (CV_8U); where the flow leaves the previous frame, 0.
 void carryMask(const cv::Mat& previous_mask, const cv::Mat& flow_map, cv::Mat* carried);
 
-// A pixel is uncovered when the previous frame's mover hid what the camera puts there
-// (`under_camera`: the previous mask brought by cameraMap(), above half) while its flow does
-// not lead back into the mover (`carried`, brought by flowMap(), under half). There the
-// photometric check compares the frame with the mover that hid the background: the camera
-// cannot explain the pixel, and a flow that DIS smeared from the mover, taking it to background
-// further back, can. The previous frame holds nothing to confirm its motion with, so its
-// positive evidence is dropped (negative kept). `uncovered`: 255 there, 0 elsewhere.
-void uncoveredPixels(const cv::Mat& carried, const cv::Mat& under_camera, cv::Mat* uncovered);
-void dropUncovered(const cv::Mat& carried, const cv::Mat& under_camera, cv::Mat* evidence);
+// A pixel is uncovered when the previous frame's mover hid what the camera puts there (the
+// previous mask, CV_8U 0/255, at the nearest pixel to `camera_map`'s, above half) while its flow
+// does not lead back into the mover (`carried`, carryMask() through flowMap(), under half).
+// There the photometric check compares the frame with the mover that hid the background: the
+// camera cannot explain the pixel, and a flow that DIS smeared from the mover, taking it to
+// background further back, can. The previous frame holds nothing to confirm its motion with, so
+// its positive evidence is dropped (negative kept). `uncovered`: 255 there, 0 elsewhere.
+void uncoveredPixels(const cv::Mat& carried, const cv::Mat& previous_mask,
+                     const cv::Mat& camera_map, cv::Mat* uncovered);
+void dropUncovered(const cv::Mat& carried, const cv::Mat& previous_mask, const cv::Mat& camera_map,
+                   cv::Mat* evidence);
 
 // Adds what the carried mask says to `evidence`: read as a probability p softened to
 // [memory_floor, 1 - memory_floor], it weighs in as memory_weight * log(p / (1 - p)).

@@ -165,13 +165,14 @@ class DensePipeline : public Pipeline {
     diag.residual_scale = scale;
     motionEvidence(residual_, scale, params_, &evidence);
     confirmMotion(confirmation_, &evidence);
-    if (!carried.empty()) {
-      if (params_.uncovered) {
-        carryMask(mask_, camera_map_, &under_camera_);
-        dropUncovered(carried, under_camera_, &evidence);
-      }
-      addMemory(carried, params_, &evidence);
-    }
+    const bool uncovers = !carried.empty() && params_.uncovered;
+    if (uncovers) dropUncovered(carried, mask_, camera_map_, &evidence);
+    debug.put("uncovered", [&] {  // white: uncovered by the last frame's mover (mask_ still its)
+      cv::Mat picture = cv::Mat::zeros(a.grey.size(), CV_8U);
+      if (uncovers) uncoveredPixels(carried, mask_, camera_map_, &picture);
+      return picture;
+    });
+    if (!carried.empty()) addMemory(carried, params_, &evidence);
     cv::Mat unary;
     colour_.addEvidence(a.bgr, evidence, &unary);
     unary += params_.foreground_bias;
@@ -188,11 +189,6 @@ class DensePipeline : public Pipeline {
     });
     debug.put("carried", [&] {  // the previous mask brought here by the flow: the memory
       return carried.empty() ? cv::Mat(cv::Mat::zeros(a.grey.size(), CV_8U)) : carried;
-    });
-    debug.put("uncovered", [&] {  // white: uncovered by the last frame's mover, not confirmed
-      cv::Mat picture = cv::Mat::zeros(a.grey.size(), CV_8U);
-      if (!carried.empty() && params_.uncovered) uncoveredPixels(carried, under_camera_, &picture);
-      return picture;
     });
     debug.put("confirmation", [&] {
       cv::Mat picture;
@@ -242,7 +238,7 @@ class DensePipeline : public Pipeline {
   ColourModel colour_;
   cv::RNG rng_;
   cv::Mat mask_;  // the last frame's, at the working scale
-  cv::Mat residual_, confirmation_, under_camera_;
+  cv::Mat residual_, confirmation_;
   cv::Mat camera_map_;
   PhotometricCheck photometric_;
   PersistentDepth depth_;

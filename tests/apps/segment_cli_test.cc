@@ -84,7 +84,7 @@ TEST(SegmentCli, DebugWritesEachStagesPictures) {
     EXPECT_TRUE(fs::exists(dir / "paper/debug/" + stage + "/00002.png")) << stage;
   }
   ASSERT_EQ(test::runCli("segment " + frames + " -o " + dir / "dense" + " --debug -q").exit_code, 0);
-  for (const char* stage : {"residual", "carried", "confirmation", "unary", "mask"}) {
+  for (const char* stage : {"residual", "carried", "confirmation", "uncovered", "unary", "mask"}) {
     EXPECT_TRUE(fs::exists(dir / "dense/debug/" + stage + "/00002.png")) << stage;
   }
 }

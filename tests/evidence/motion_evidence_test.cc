@@ -89,17 +89,16 @@ TEST(MotionEvidence, PositiveEvidenceIsDroppedWhereTheMoverUncoveredTheBackgroun
   previous_mask.colRange(30, 60).setTo(255);
   cv::Mat flow = uniformFlow(size, {0, 0});
   flow.colRange(25, 63).setTo(cv::Scalar(-3, 0));  // the mover, now 33-62, and its smear
-  cv::Mat flow_map, camera_map, carried, under_camera;
+  cv::Mat flow_map, camera_map, carried;
   flowMap(flow, &flow_map);
   cameraMap(cv::Matx33d::eye(), size, &camera_map);
   carryMask(previous_mask, flow_map, &carried);
-  carryMask(previous_mask, camera_map, &under_camera);
   cv::Mat evidence(size, CV_32F, cv::Scalar(2));
   evidence.at<float>(5, 31) = -1;
-  dropUncovered(carried, under_camera, &evidence);
+  dropUncovered(carried, previous_mask, camera_map, &evidence);
 
   cv::Mat uncovered;
-  uncoveredPixels(carried, under_camera, &uncovered);
+  uncoveredPixels(carried, previous_mask, camera_map, &uncovered);
   EXPECT_EQ(cv::countNonZero(uncovered), 3 * size.height);
   EXPECT_EQ(cv::countNonZero(uncovered.colRange(30, 33)), 3 * size.height);
   EXPECT_EQ(cv::countNonZero(evidence.colRange(30, 33)), 1);  // zero but the negative one
