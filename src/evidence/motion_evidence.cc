@@ -109,6 +109,11 @@ bool hiddenThere(const cv::Mat& previous_mask, const cv::Point2f& at) {
          previous_mask.at<uchar>(y, x) > 127;
 }
 
+// Hidden there, and the flow does not lead back into the mover (`carried` under half).
+bool uncoveredAt(uchar carried, const cv::Mat& previous_mask, const cv::Point2f& at) {
+  return carried <= 127 && hiddenThere(previous_mask, at);
+}
+
 }  // namespace
 
 void uncoveredPixels(const cv::Mat& carried, const cv::Mat& previous_mask,
@@ -119,7 +124,7 @@ void uncoveredPixels(const cv::Mat& carried, const cv::Mat& previous_mask,
     const auto* at = camera_map.ptr<cv::Point2f>(y);
     uchar* out = uncovered->ptr<uchar>(y);
     for (int x = 0; x < carried.cols; ++x) {
-      out[x] = c[x] <= 127 && hiddenThere(previous_mask, at[x]) ? 255 : 0;
+      out[x] = uncoveredAt(c[x], previous_mask, at[x]) ? 255 : 0;
     }
   }
 }
@@ -132,7 +137,7 @@ void dropUncovered(const cv::Mat& carried, const cv::Mat& previous_mask, const c
     float* e = evidence->ptr<float>(y);
     for (int x = 0; x < evidence->cols; ++x) {
       // Only positive evidence is dropped: the mask is looked up where there is some.
-      if (e[x] > 0 && c[x] <= 127 && hiddenThere(previous_mask, at[x])) e[x] = 0;
+      if (e[x] > 0 && uncoveredAt(c[x], previous_mask, at[x])) e[x] = 0;
     }
   }
 }

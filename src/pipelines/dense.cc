@@ -167,7 +167,8 @@ class DensePipeline : public Pipeline {
     confirmMotion(confirmation_, &evidence);
     const bool uncovers = !carried.empty() && params_.uncovered;
     if (uncovers) dropUncovered(carried, mask_, camera_map_, &evidence);
-    debug.put("uncovered", [&] {  // white: uncovered by the last frame's mover (mask_ still its)
+    // White: background the last frame's mover uncovered (mask_ is still that frame's here).
+    debug.put("uncovered", [&] {
       cv::Mat picture = cv::Mat::zeros(a.grey.size(), CV_8U);
       if (uncovers) uncoveredPixels(carried, mask_, camera_map_, &picture);
       return picture;

@@ -80,7 +80,7 @@ TEST(MotionEvidence, TheCarriedMaskFollowsTheFlow) {
 }
 
 // A mover at columns 30-59 of the previous frame moved 3 px right, the camera still. DIS gives
-// the mover's flow also to the 8 columns behind it (22-29 now): of those, 30-32 were hidden by
+// the mover's flow also to the 8 columns behind it (25-32 now): of those, 30-32 were hidden by
 // the mover and are uncovered — the flow leads them out of the previous mask — while 25-29
 // were seen and stay as they are, as does the mover itself (its flow leads into the mask).
 TEST(MotionEvidence, PositiveEvidenceIsDroppedWhereTheMoverUncoveredTheBackground) {
