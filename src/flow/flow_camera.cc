@@ -106,7 +106,9 @@ std::optional<cv::Vec3d> findEpipole(const FlowCamera& camera, cv::Size size,
     plane_step.push_back(on_plane - camera.at[i]);
   }
   const double share = static_cast<double>(x.size()) / static_cast<double>(camera.at.size());
-  if (x.size() < kMinOffPlane || share < kDepthWithThePlane.share) return std::nullopt;
+  // Too few off the plane for either rule: no epipole to fit.
+  const double least_share = std::min(kDepthEverywhere.share, kDepthWithThePlane.share);
+  if (x.size() < kMinOffPlane || share < least_share) return std::nullopt;
   const auto report = Ransac<EpipoleEstimator>(options).estimate(x, y, size, rng);
   if (!report.success || report.num_inliers < kMinEpipoleAgreement * x.size()) return std::nullopt;
   std::vector<double> residuals;
