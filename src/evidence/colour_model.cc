@@ -38,20 +38,23 @@ void ColourModel::addEvidence(const cv::Mat& bgr, const cv::Mat& evidence,
   }
 }
 
-void ColourModel::update(const cv::Mat& bgr, const cv::Mat& evidence) {
+void ColourModel::update(const cv::Mat& bgr, const cv::Mat& evidence,
+                         const cv::Mat& pair_evidence) {
   const size_t bins = size_t{1} << (3 * params_.colour_bits);
   count_fg_.assign(bins, 0.f);
   count_bg_.assign(bins, 0.f);
   float total_fg = 0, total_bg = 0;
   const auto confident = static_cast<float>(params_.colour_confidence);
+  const float pair_static = params_.colour_forgets ? -confident : -HUGE_VALF;
   for (int y = 0; y < bgr.rows; ++y) {
     const auto* c = bgr.ptr<cv::Vec3b>(y);
     const float* e = evidence.ptr<float>(y);
+    const float* pair = pair_evidence.ptr<float>(y);
     for (int x = 0; x < bgr.cols; ++x) {
       if (e[x] > confident) {
         ++count_fg_[static_cast<size_t>(binOf(c[x]))];
         ++total_fg;
-      } else if (e[x] < -confident) {
+      } else if (e[x] < -confident || pair[x] <= pair_static) {
         ++count_bg_[static_cast<size_t>(binOf(c[x]))];
         ++total_bg;
       }

@@ -21,8 +21,13 @@ class ColourModel {
   // `bgr` (8-bit BGR, evidence's size, CV_32F); evidence alone before the first update.
   void addEvidence(const cv::Mat& bgr, const cv::Mat& evidence, cv::Mat* with_colour) const;
 
-  // Learns from the pixels of `bgr` whose `evidence` (CV_32F) is beyond +-colour_confidence.
-  void update(const cv::Mat& bgr, const cv::Mat& evidence);
+  // Learns the foreground from the pixels of `bgr` whose `evidence` (CV_32F, memory included)
+  // is above colour_confidence, the background from those whose `evidence` is below
+  // -colour_confidence or, with colour_forgets, whose `pair_evidence` (the current pair's
+  // alone, before memory) is at or below it: where the pair says static as strongly as it can,
+  // inside the carried mask too. Otherwise a static region once taken for a mover would keep
+  // itself through its colour, as memory lifts its evidence out of the background's reach.
+  void update(const cv::Mat& bgr, const cv::Mat& evidence, const cv::Mat& pair_evidence);
 
   void reset();
 

@@ -173,11 +173,12 @@ class DensePipeline : public Pipeline {
       if (uncovers) uncoveredPixels(carried, mask_, camera_map_, &picture);
       return picture;
     });
+    evidence.copyTo(pair_evidence_);
     if (!carried.empty()) addMemory(carried, params_, &evidence);
     cv::Mat unary;
     colour_.addEvidence(a.bgr, evidence, &unary);
     unary += params_.foreground_bias;
-    colour_.update(a.bgr, evidence);
+    colour_.update(a.bgr, evidence, pair_evidence_);
     diag.classify_ms = millisecondsSince(start);
 
     start = Clock::now();
@@ -240,6 +241,7 @@ class DensePipeline : public Pipeline {
   cv::RNG rng_;
   cv::Mat mask_;  // the last frame's, at the working scale
   cv::Mat residual_, confirmation_;
+  cv::Mat pair_evidence_;  // the pair's evidence before memory, for the colour model
   cv::Mat camera_map_;
   PhotometricCheck photometric_;
   PersistentDepth depth_;

@@ -1,0 +1,77 @@
+#include "evidence/colour_model.h"
+
+#include <gtest/gtest.h>
+
+namespace movseg {
+namespace {
+
+const cv::Vec3b kRed(0, 0, 255), kGreen(0, 255, 0), kBlue(255, 0, 0);
+
+// Three vertical stripes of 16 x 32 pixels: red, green, blue.
+cv::Mat stripes() {
+  cv::Mat bgr(32, 48, CV_8UC3);
+  bgr.colRange(0, 16).setTo(cv::Scalar(kRed[0], kRed[1], kRed[2]));
+  bgr.colRange(16, 32).setTo(cv::Scalar(kGreen[0], kGreen[1], kGreen[2]));
+  bgr.colRange(32, 48).setTo(cv::Scalar(kBlue[0], kBlue[1], kBlue[2]));
+  return bgr;
+}
+
+cv::Mat stripeEvidence(float red, float green, float blue) {
+  cv::Mat evidence(32, 48, CV_32F);
+  evidence.colRange(0, 16).setTo(red);
+  evidence.colRange(16, 32).setTo(green);
+  evidence.colRange(32, 48).setTo(blue);
+  return evidence;
+}
+
+// The colour evidence ColourModel adds at the first pixel of each stripe.
+cv::Vec3f colourEvidence(const ColourModel& model, const cv::Mat& bgr) {
+  cv::Mat with_colour;
+  model.addEvidence(bgr, cv::Mat::zeros(bgr.size(), CV_32F), &with_colour);
+  return {with_colour.at<float>(0, 0), with_colour.at<float>(0, 16), with_colour.at<float>(0, 32)};
+}
+
+TEST(ColourModel, LearnsTheColoursOfConfidentPixelsOnly) {
+  const Params params;
+  ColourModel model(params);
+  const cv::Mat bgr = stripes();
+  // Red moves, green is undecided, blue is static.
+  const cv::Mat evidence = stripeEvidence(2.5f, 0.5f, -2.5f);
+  model.update(bgr, evidence, evidence);
+  const cv::Vec3f colour = colourEvidence(model, bgr);
+  const auto most = static_cast<float>(params.colour_weight * params.colour_clip);
+  EXPECT_FLOAT_EQ(colour[0], most);
+  EXPECT_FLOAT_EQ(colour[1], 0.f);  // seen by neither histogram
+  EXPECT_FLOAT_EQ(colour[2], -most);
+}
+
+// Red was taken for a mover; now every pair says it is static as strongly as a pair can (the
+// evidence floor), but it lies inside the carried mask, whose memory raises its evidence above
+// -colour_confidence. Green moves. The pair's own verdict teaches the background red, so red's
+// colour evidence turns from moving to static; without colour_forgets red stays moving.
+TEST(ColourModel, WhatThePairCallsStaticIsLearntAsBackgroundDespiteMemory) {
+  const Params params;
+  ColourModel model(params);
+  const cv::Mat bgr = stripes();
+  const cv::Mat first = stripeEvidence(2.5f, 2.5f, -2.5f);
+  model.update(bgr, first, first);
+  ASSERT_GT(colourEvidence(model, bgr)[0], 0.f);
+
+  const auto floor = static_cast<float>(params.evidence_min);
+  const cv::Mat pair = stripeEvidence(floor, 2.5f, floor);
+  const cv::Mat with_memory = stripeEvidence(floor + 0.69f, 2.5f, floor - 0.69f);
+  for (int frame = 0; frame < 30; ++frame) model.update(bgr, with_memory, pair);
+  const cv::Vec3f colour = colourEvidence(model, bgr);
+  EXPECT_LT(colour[0], -2.f);
+  EXPECT_GT(colour[1], 2.f);
+
+  Params keeps = params;
+  keeps.colour_forgets = false;
+  ColourModel memory_only(keeps);
+  memory_only.update(bgr, first, first);
+  for (int frame = 0; frame < 30; ++frame) memory_only.update(bgr, with_memory, pair);
+  EXPECT_GT(colourEvidence(memory_only, bgr)[0], 2.f);
+}
+
+}  // namespace
+}  // namespace movseg
