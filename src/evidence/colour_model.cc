@@ -45,7 +45,7 @@ void ColourModel::update(const cv::Mat& bgr, const cv::Mat& evidence,
   count_bg_.assign(bins, 0.f);
   float total_fg = 0, total_bg = 0;
   const auto confident = static_cast<float>(params_.colour_confidence);
-  const float pair_static = params_.colour_forgets ? -confident : -HUGE_VALF;
+  const auto forgetting = static_cast<float>(params_.colour_forgetting);
   for (int y = 0; y < bgr.rows; ++y) {
     const auto* c = bgr.ptr<cv::Vec3b>(y);
     const float* e = evidence.ptr<float>(y);
@@ -54,9 +54,12 @@ void ColourModel::update(const cv::Mat& bgr, const cv::Mat& evidence,
       if (e[x] > confident) {
         ++count_fg_[static_cast<size_t>(binOf(c[x]))];
         ++total_fg;
-      } else if (e[x] < -confident || pair[x] <= pair_static) {
+      } else if (e[x] < -confident) {
         ++count_bg_[static_cast<size_t>(binOf(c[x]))];
         ++total_bg;
+      } else if (pair[x] <= -confident) {
+        count_bg_[static_cast<size_t>(binOf(c[x]))] += forgetting;
+        total_bg += forgetting;
       }
     }
   }

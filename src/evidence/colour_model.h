@@ -23,10 +23,11 @@ class ColourModel {
 
   // Learns the foreground from the pixels of `bgr` whose `evidence` (CV_32F, memory included)
   // is above colour_confidence, the background from those whose `evidence` is below
-  // -colour_confidence or, with colour_forgets, whose `pair_evidence` (the current pair's
-  // alone, before memory) is at or below it: where the pair says static as strongly as it can,
-  // inside the carried mask too. Otherwise a static region once taken for a mover would keep
-  // itself through its colour, as memory lifts its evidence out of the background's reach.
+  // -colour_confidence and, each counted colour_forgetting times, from those whose
+  // `pair_evidence` (the current pair's alone, before memory) is at or below it: inside the
+  // carried mask, where memory lifts the evidence out of the background's reach. Otherwise a
+  // static region once taken for a mover would keep itself through its colour; counted less
+  // than a confident pixel, as a slow mover's still inside looks the same.
   void update(const cv::Mat& bgr, const cv::Mat& evidence, const cv::Mat& pair_evidence);
 
   void reset();

@@ -48,7 +48,7 @@ TEST(ColourModel, LearnsTheColoursOfConfidentPixelsOnly) {
 // Red was taken for a mover; now every pair says it is static as strongly as a pair can (the
 // evidence floor), but it lies inside the carried mask, whose memory raises its evidence above
 // -colour_confidence. Green moves. The pair's own verdict teaches the background red, so red's
-// colour evidence turns from moving to static; without colour_forgets red stays moving.
+// colour evidence turns from moving to static; without colour_forgetting red stays moving.
 TEST(ColourModel, WhatThePairCallsStaticIsLearntAsBackgroundDespiteMemory) {
   const Params params;
   ColourModel model(params);
@@ -66,11 +66,32 @@ TEST(ColourModel, WhatThePairCallsStaticIsLearntAsBackgroundDespiteMemory) {
   EXPECT_GT(colour[1], 2.f);
 
   Params keeps = params;
-  keeps.colour_forgets = false;
+  keeps.colour_forgetting = 0;
   ColourModel memory_only(keeps);
   memory_only.update(bgr, first, first);
   for (int frame = 0; frame < 30; ++frame) memory_only.update(bgr, with_memory, pair);
   EXPECT_GT(colourEvidence(memory_only, bgr)[0], 2.f);
+}
+
+// A slow mover, red: its edge (4 of its 16 columns) moves, its still inside, inside the carried
+// mask, looks static to the pair. Counted at a quarter, the inside does not outweigh the edge,
+// and red stays a mover's colour; counted in full, red would turn to background.
+TEST(ColourModel, ASlowMoversStillInsideDoesNotTeachAwayItsColour) {
+  const cv::Mat bgr = stripes();
+  const auto floor = static_cast<float>(Params().evidence_min);
+  cv::Mat pair = stripeEvidence(floor, 2.5f, floor);
+  pair.colRange(0, 4).setTo(2.5f);
+  cv::Mat with_memory = stripeEvidence(floor + 0.69f, 2.5f, floor - 0.69f);
+  with_memory.colRange(0, 4).setTo(2.5f);
+  auto redAfterThirtyFrames = [&](double forgetting) {
+    Params params;
+    params.colour_forgetting = forgetting;
+    ColourModel model(params);
+    for (int frame = 0; frame < 30; ++frame) model.update(bgr, with_memory, pair);
+    return colourEvidence(model, bgr)[0];
+  };
+  EXPECT_GT(redAfterThirtyFrames(Params().colour_forgetting), 0.f);
+  EXPECT_LT(redAfterThirtyFrames(1.0), 0.f);
 }
 
 }  // namespace
