@@ -31,14 +31,18 @@ cv::Vec3f colourEvidence(const ColourModel& model, const cv::Mat& bgr) {
   return {with_colour.at<float>(0, 0), with_colour.at<float>(0, 16), with_colour.at<float>(0, 32)};
 }
 
+// A model that has seen one frame of stripes(), memory saying nothing.
+ColourModel learntFrom(const Params& params, const cv::Mat& evidence) {
+  ColourModel model(params);
+  model.update(stripes(), evidence, evidence);
+  return model;
+}
+
 TEST(ColourModel, LearnsTheColoursOfConfidentPixelsOnly) {
   const Params params;
-  ColourModel model(params);
-  const cv::Mat bgr = stripes();
   // Red moves, green is undecided, blue is static.
-  const cv::Mat evidence = stripeEvidence(2.5f, 0.5f, -2.5f);
-  model.update(bgr, evidence, evidence);
-  const cv::Vec3f colour = colourEvidence(model, bgr);
+  const ColourModel model = learntFrom(params, stripeEvidence(2.5f, 0.5f, -2.5f));
+  const cv::Vec3f colour = colourEvidence(model, stripes());
   const auto most = static_cast<float>(params.colour_weight * params.colour_clip);
   EXPECT_FLOAT_EQ(colour[0], most);
   EXPECT_FLOAT_EQ(colour[1], 0.f);  // seen by neither histogram
@@ -51,10 +55,9 @@ TEST(ColourModel, LearnsTheColoursOfConfidentPixelsOnly) {
 // colour evidence turns from moving to static; without colour_forgetting red stays moving.
 TEST(ColourModel, WhatThePairCallsStaticIsLearntAsBackgroundDespiteMemory) {
   const Params params;
-  ColourModel model(params);
   const cv::Mat bgr = stripes();
   const cv::Mat first = stripeEvidence(2.5f, 2.5f, -2.5f);
-  model.update(bgr, first, first);
+  ColourModel model = learntFrom(params, first);
   ASSERT_GT(colourEvidence(model, bgr)[0], 0.f);
 
   const auto floor = static_cast<float>(params.evidence_min);
@@ -67,8 +70,7 @@ TEST(ColourModel, WhatThePairCallsStaticIsLearntAsBackgroundDespiteMemory) {
 
   Params keeps = params;
   keeps.colour_forgetting = 0;
-  ColourModel memory_only(keeps);
-  memory_only.update(bgr, first, first);
+  ColourModel memory_only = learntFrom(keeps, first);
   for (int frame = 0; frame < 30; ++frame) memory_only.update(bgr, with_memory, pair);
   EXPECT_GT(colourEvidence(memory_only, bgr)[0], 2.f);
 }
