@@ -6,8 +6,14 @@
 namespace movseg {
 namespace {
 
-// A histogram learnt from fewer pixels than this says nothing yet.
+// The background's histogram says nothing until it has seen this many pixels.
 constexpr float kMinPixels = 20.f;
+// The foreground's colours are those of the movers seen lately and, with the weight of this
+// many pixels, the background's: a mover not seen yet may look like anything in the view. So a
+// few foreground pixels say little, and when no mover is seen for a while the foreground's
+// histogram fades into the background's and the colour evidence to zero, instead of holding
+// the last movers' colours for ever (docs/design.md, "Colour that forgets").
+constexpr float kPriorPixels = 20.f;
 // Keeps a bin never seen from reading as infinitely unlikely.
 constexpr float kBinFloor = 1e-4f;
 
@@ -43,7 +49,7 @@ void ColourModel::update(const cv::Mat& bgr, const cv::Mat& evidence,
   const size_t bins = size_t{1} << (3 * params_.colour_bits);
   count_fg_.assign(bins, 0.f);
   count_bg_.assign(bins, 0.f);
-  float total_fg = 0, total_bg = 0;
+  float total_bg = 0;
   const auto confident = static_cast<float>(params_.colour_confidence);
   const auto forgetting = static_cast<float>(params_.colour_forgetting);
   for (int y = 0; y < bgr.rows; ++y) {
@@ -53,7 +59,6 @@ void ColourModel::update(const cv::Mat& bgr, const cv::Mat& evidence,
     for (int x = 0; x < bgr.cols; ++x) {
       if (e[x] > confident) {
         ++count_fg_[static_cast<size_t>(binOf(c[x]))];
-        ++total_fg;
       } else if (e[x] < -confident) {
         ++count_bg_[static_cast<size_t>(binOf(c[x]))];
         ++total_bg;
@@ -63,21 +68,25 @@ void ColourModel::update(const cv::Mat& bgr, const cv::Mat& evidence,
       }
     }
   }
-  if (total_fg < kMinPixels || total_bg < kMinPixels) return;
-  const bool first = foreground_.empty();
+  if (total_bg < kMinPixels) return;
+  const bool first = background_.empty();
   const float rate = first ? 1.f : static_cast<float>(params_.colour_rate);
   foreground_.resize(bins, 0.f);
   background_.resize(bins, 0.f);
+  float foreground_pixels = 0;
   for (size_t b = 0; b < bins; ++b) {
-    foreground_[b] += rate * (count_fg_[b] / total_fg - foreground_[b]);
+    foreground_[b] += rate * (count_fg_[b] - foreground_[b]);
     background_[b] += rate * (count_bg_[b] / total_bg - background_[b]);
+    foreground_pixels += foreground_[b];
   }
   // Once per bin rather than once per pixel: at 4 bits a working frame has 14 pixels per bin.
   const auto weight = static_cast<float>(params_.colour_weight);
   const auto clip = static_cast<float>(params_.colour_clip);
+  const float normaliser = 1.f / (foreground_pixels + kPriorPixels);
   evidence_.resize(bins);
   for (size_t b = 0; b < bins; ++b) {
-    const float ratio = std::log((foreground_[b] + kBinFloor) / (background_[b] + kBinFloor));
+    const float fg = (foreground_[b] + kPriorPixels * background_[b]) * normaliser;
+    const float ratio = std::log((fg + kBinFloor) / (background_[b] + kBinFloor));
     evidence_[b] = weight * std::clamp(ratio, -clip, clip);
   }
 }

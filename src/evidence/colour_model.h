@@ -1,5 +1,6 @@
 // What the moving objects and the background look like, learnt over the stream: two colour
-// histograms, updated from the pixels whose evidence is confident, forgetting at a fixed rate.
+// histograms, updated from the pixels whose evidence is confident, forgetting at a fixed rate;
+// the foreground's drawn towards the background's when few movers are seen.
 // Their log ratio is evidence for the pixels motion leaves undecided (a slow object's
 // interior, a flat patch the flow cannot follow).
 #pragma once
@@ -42,7 +43,9 @@ class ColourModel {
   // Per channel and 8-bit level, its bits of the bin: the first channel's are the highest.
   // Looked up rather than shifted by a shift known only at run time, which costs more.
   std::array<std::array<int, 256>, 3> bin_bits_;
-  std::vector<float> foreground_, background_;  // normalised histograms; empty until learnt
+  // Empty until learnt. The foreground's in pixels (a moving average of each frame's counts,
+  // which fades when no mover is seen); the background's normalised.
+  std::vector<float> foreground_, background_;
   std::vector<float> evidence_;                  // per bin: what addEvidence() adds
   std::vector<float> count_fg_, count_bg_;      // scratch of update()
 };
