@@ -46,8 +46,8 @@ class ColourModel {
   // Empty until learnt. The foreground's in pixels (a moving average of each frame's counts,
   // which fades when no mover is seen); the background's normalised.
   std::vector<float> foreground_, background_;
-  std::vector<float> evidence_;                  // per bin: what addEvidence() adds
-  std::vector<float> count_fg_, count_bg_;      // scratch of update()
+  std::vector<float> evidence_;              // per bin: what addEvidence() adds
+  std::vector<float> count_fg_, count_bg_;  // scratch of update()
 };
 
 }  // namespace movseg

@@ -97,9 +97,9 @@ TEST(ColourModel, ASlowMoversStillInsideDoesNotTeachAwayItsColour) {
 }
 
 // Red is a mover's colour (the top of its stripe moves) and the background's too (its bottom
-// is static); then nothing moves for 60 frames, the top of red undecided. Unseen, the movers' colours fade
-// into the background's, and red's colour evidence with them; kept as last learnt, red would
-// still pull into the mask whatever shows it.
+// is static); then nothing moves for 60 frames, the top of red undecided. Unseen, the movers'
+// colours fade into the background's, and red's colour evidence with them; kept as last
+// learnt, red would still pull into the mask whatever shows it.
 TEST(ColourModel, TheMoversColoursFadeWhenNoMoverIsSeen) {
   const Params params;
   const cv::Mat bgr = stripes();
