@@ -20,8 +20,10 @@ constexpr double kSceneCutMedianDifference = 1000;  // (8-bit levels)^2: an RMS 
 // median of d over what it covers exceeds kSceneCutMedianDifference.
 bool isSceneCut(const cv::Mat& difference, const cv::Matx33d& model);
 
-// The rule alone, from a pair's measurements: the share of the current frame the warped previous
-// frame covers, and the median of d over that part.
-bool isSceneCut(double covered_share, double median_difference);
+// The rule alone, from a pair's pixel counts: of `total` pixels of the current frame the warped
+// previous frame covers `covered`, and of those `differing` have d above
+// kSceneCutMedianDifference. More than half of them differing is a median above it: counted,
+// not sorted (a partial sort of a frame's values cost more than the rest of the check).
+bool isSceneCut(long total, long covered, long differing);
 
 }  // namespace movseg

@@ -8,7 +8,6 @@
 
 #include "classify/scene_cut.h"
 #include "core/frame.h"
-#include "core/quantile.h"
 #include "core/timing.h"
 #include "cut/evidence_cut.h"
 #include "evidence/colour_model.h"
@@ -57,11 +56,10 @@ struct Remember {
 // A scene cut (classify/scene_cut.h) judged on every other pixel of every other row: eq. (4)'s d
 // between the frame and the previous one at the pixel nearest to where the camera puts it. A
 // median over a quarter of the pixels decides as well as over all; warping the whole frame for
-// it would cost more than the rest of the pair's evidence. `d` is scratch.
+// it would cost more than the rest of the pair's evidence.
 bool isSceneCutUnderCamera(const cv::Mat& bgr, const cv::Mat& previous_bgr,
-                           const cv::Mat& camera_map, std::vector<float>* d) {
-  d->clear();
-  long samples = 0;
+                           const cv::Mat& camera_map) {
+  long samples = 0, covered = 0, differing = 0;
   for (int y = 0; y < bgr.rows; y += 2) {
     const auto* at = camera_map.ptr<cv::Vec2f>(y);
     const auto* colour = bgr.ptr<cv::Vec3b>(y);
@@ -69,11 +67,11 @@ bool isSceneCutUnderCamera(const cv::Mat& bgr, const cv::Mat& previous_bgr,
       const cv::Point p(cvRound(at[x][0]), cvRound(at[x][1]));
       if (p.x < 0 || p.y < 0 || p.x >= bgr.cols || p.y >= bgr.rows) continue;
       const cv::Vec3i step = cv::Vec3i(colour[x]) - cv::Vec3i(previous_bgr.at<cv::Vec3b>(p));
-      d->push_back(static_cast<float>(step.dot(step)) / 3.f);
+      ++covered;
+      differing += static_cast<float>(step.dot(step)) / 3.f > kSceneCutMedianDifference;
     }
   }
-  const double covered_share = static_cast<double>(d->size()) / static_cast<double>(samples);
-  return isSceneCut(covered_share, d->empty() ? 0.0 : quantile(d, 0.5));
+  return isSceneCut(samples, covered, differing);
 }
 
 // The residuals at the samples the photometric check does not confirm as moving (less than
@@ -158,7 +156,7 @@ class DensePipeline : public Pipeline {
     describe(camera, a.scale, &diag);
 
     start = Clock::now();
-    diag.scene_cut = isSceneCutUnderCamera(a.bgr, previous_.bgr, camera_map_, &scene_cut_scratch_);
+    diag.scene_cut = isSceneCutUnderCamera(a.bgr, previous_.bgr, camera_map_);
     if (diag.scene_cut) return forget(a.bgr.size());
     photometric_.confirm(a.grey, previous_.grey, a.flow_map, camera_map_, params_, &confirmation_);
     const float scale = residualScale(unconfirmedResiduals(camera, confirmation_), params_);
@@ -246,7 +244,6 @@ class DensePipeline : public Pipeline {
   PhotometricCheck photometric_;
   PersistentDepth depth_;
   PreviousFrame previous_;
-  std::vector<float> scene_cut_scratch_;
   bool has_pair_ = false;    // the last frame had a camera model: eq. (4)'s I' can be made
   cv::Matx33d to_current_;  // that model, previous to current working pixels
   cv::Size input_size_;
