@@ -122,11 +122,12 @@ void BM_GeodesicDistances(benchmark::State& state) {
   }
 }
 
-// range(2): cut band (0 = whole image), range(3): 0 OpenCV's max-flow, 1 Boost's.
+// range(2): cut band (0 = whole image), range(3): 0 OpenCV's max-flow, 1 Boost's, 2 the grid's.
 void BM_GraphCut(benchmark::State& state) {
   StageInputs in(synthPair(state));
   in.params.cut_band = static_cast<int>(state.range(2));
-  const auto solver = state.range(3) == 0 ? MaxFlowSolver::kOpenCv : MaxFlowSolver::kBoost;
+  const MaxFlowSolver solvers[] = {MaxFlowSolver::kOpenCv, MaxFlowSolver::kBoost, MaxFlowSolver::kGrid};
+  const MaxFlowSolver solver = solvers[state.range(3)];
   int nodes = 0;
   for (auto _ : state) {
     const CutResult cut = geodesicGraphCut(in.cur->image.seg_bgr, in.fg, in.bg, in.params, solver);
@@ -239,7 +240,7 @@ void sizes(benchmark::internal::Benchmark* b) {
 
 void cutVariants(benchmark::internal::Benchmark* b) {
   for (int band : {0, 8}) {
-    for (int solver : {0, 1}) b->Args({320, 240, band, solver});
+    for (int solver : {0, 1, 2}) b->Args({320, 240, band, solver});
   }
   b->Unit(benchmark::kMillisecond);
 }

@@ -62,7 +62,7 @@ cv::Mat cutEvidence(const cv::Mat& evidence, const cv::Mat& bgr, double smoothne
   energy.cost_fg = cv::max(-block_evidence, 0.0);
   contrastWeights(block_bgr, smoothness, &energy);
   const cv::Mat labels =
-      labelFreePixels(energy, decidedPixels(energy), MaxFlowSolver::kOpenCv, nodes);
+      labelFreePixels(energy, decidedPixels(energy), MaxFlowSolver::kGrid, nodes);
   return upscaledMask(labels, bgr.size());
 }
 

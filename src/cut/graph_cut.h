@@ -19,6 +19,6 @@ struct CutResult {
 // Segments `bgr` from foreground and background seed pixels. Needs at least one seed of each.
 CutResult geodesicGraphCut(const cv::Mat& bgr, const std::vector<cv::Point>& foreground,
                            const std::vector<cv::Point>& background, const Params& params,
-                           MaxFlowSolver solver = MaxFlowSolver::kOpenCv);
+                           MaxFlowSolver solver = MaxFlowSolver::kGrid);
 
 }  // namespace movseg

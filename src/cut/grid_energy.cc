@@ -4,6 +4,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "cut/grid_max_flow.h"
+
 namespace movseg {
 
 cv::Mat decidedPixels(const GridEnergy& energy) {
@@ -85,6 +87,7 @@ cv::Mat blockState(const cv::Mat& state) {
 
 cv::Mat labelFreePixels(const GridEnergy& energy, const cv::Mat& state, MaxFlowSolver solver,
                         int* nodes) {
+  if (solver == MaxFlowSolver::kGrid) return labelFreePixelsOnGrid(energy, state, nodes);
   cv::Mat node;
   const FlowGraph graph = freePixelGraph(energy, state, &node);
   *nodes = graph.nodes();

@@ -34,6 +34,7 @@ struct FlowGraph {
 enum class MaxFlowSolver {
   kOpenCv,  // cv::detail::GCGraph, OpenCV's Boykov–Kolmogorov (used by GrabCut)
   kBoost,   // boost::boykov_kolmogorov_max_flow (Boost.Graph)
+  kGrid,    // the same algorithm on the pixel grid itself (cut/grid_max_flow.h), for GridEnergy
 };
 
 // 1 where the node ends on the source side (foreground).

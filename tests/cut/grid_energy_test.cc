@@ -61,6 +61,27 @@ TEST(GridEnergy, TheExactReductionKeepsTheMinimum) {
   EXPECT_NEAR(energyOf(e, part), energyOf(e, full), 1e-3);
 }
 
+// The grid's own max-flow finds a minimum of the same energy as OpenCV's general one, with the
+// whole grid free and with pixels fixed by the exact reduction, on grids where the unary or the
+// edges dominate; on these energies the minimum is unique, so the labels are the same too.
+TEST(GridEnergy, TheGridSolverFindsTheMinimumOpenCvFinds) {
+  for (const float edge_scale : {0.3f, 1.f, 3.f}) {
+    for (const std::uint64_t seed : {4u, 5u, 6u}) {
+      GridEnergy e = randomEnergy({37, 23}, seed);
+      e.right *= edge_scale;
+      e.down *= edge_scale;
+      for (const cv::Mat& state : {cv::Mat(cv::Mat::zeros(23, 37, CV_8U)), decidedPixels(e)}) {
+        int general_nodes = 0, grid_nodes = 0;
+        const cv::Mat general = labelFreePixels(e, state, MaxFlowSolver::kOpenCv, &general_nodes);
+        const cv::Mat grid = labelFreePixels(e, state, MaxFlowSolver::kGrid, &grid_nodes);
+        EXPECT_EQ(grid_nodes, general_nodes);
+        EXPECT_NEAR(energyOf(e, grid), energyOf(e, general), 1e-3) << edge_scale << " " << seed;
+        EXPECT_EQ(cv::countNonZero(grid != general), 0) << edge_scale << " " << seed;
+      }
+    }
+  }
+}
+
 // Two flat halves with a boundary at an odd column: the blocks place it within a pixel, the
 // refinement puts it back exactly.
 TEST(GridEnergy, CoarseToFineFindsAnOddBoundaryExactly) {

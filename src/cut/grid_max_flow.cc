@@ -1,0 +1,313 @@
+#include "cut/grid_max_flow.h"
+
+#include <algorithm>
+#include <array>
+#include <climits>
+#include <cstdint>
+#include <vector>
+
+namespace movseg {
+namespace {
+
+// Directions to a neighbour; d ^ 1 is the opposite one.
+enum Direction : std::int8_t { kRight = 0, kLeft = 1, kDown = 2, kUp = 3 };
+// A node's parent: one of the directions, or one of these.
+constexpr std::int8_t kTerminal = 4, kOrphan = 5, kNone = 6;
+enum Tree : std::uint8_t { kSourceTree = 0, kSinkTree = 1 };
+constexpr int kEnd = -1, kIdle = -2;  // Node::next: last in the active queue; not in it
+
+struct Node {
+  std::array<float, 4> cap{};  // residual capacity to the neighbour in each direction
+  float terminal = 0;          // > 0: residual from the source; < 0: to the sink
+  int ts = 0, dist = 0;        // when the distance to the tree's root was last known, and it
+  int next = kIdle;            // the active queue
+  std::int8_t parent = kNone;
+  std::uint8_t tree = kSourceTree;
+};
+
+// The grid padded by one node on every side (parent kNone, no capacity), so that every node of
+// the image has four neighbours to look at.
+class GridFlow {
+ public:
+  GridFlow(const GridEnergy& energy, const cv::Mat& state)
+      : width_(state.cols + 2),
+        nodes_(static_cast<size_t>((state.cols + 2) * (state.rows + 2))),
+        offset_{1, -1, state.cols + 2, -(state.cols + 2)} {
+    setCapacities(energy, state);
+    for (int i = 0; i < static_cast<int>(nodes_.size()); ++i) {
+      Node& n = nodes_[static_cast<size_t>(i)];
+      if (n.terminal == 0) continue;
+      n.parent = kTerminal;
+      n.tree = n.terminal < 0 ? kSinkTree : kSourceTree;
+      n.dist = 1;
+      enqueue(i);
+    }
+  }
+
+  void run() {
+    for (;;) {
+      int from = -1;
+      const int direction = grow(&from);
+      if (from < 0) return;
+      augment(from, direction);
+      adoptOrphans();
+    }
+  }
+
+  // GCGraph's reading: a node is foreground unless it last belonged to the sink's tree.
+  bool onSourceSide(int x, int y) const { return node(index(x, y)).tree == kSourceTree; }
+
+  int index(int x, int y) const { return (y + 1) * width_ + x + 1; }
+
+ private:
+  Node& node(int i) { return nodes_[static_cast<size_t>(i)]; }
+  const Node& node(int i) const { return nodes_[static_cast<size_t>(i)]; }
+
+  // Terminal capacities (cost_bg from the source, cost_fg to the sink, less what both share)
+  // and the edges between free pixels; an edge to a fixed pixel becomes terminal capacity.
+  void setCapacities(const GridEnergy& energy, const cv::Mat& state) {
+    const int w = state.cols, h = state.rows;
+    for (int y = 0; y < h; ++y) {
+      const float* fg = energy.cost_fg.ptr<float>(y);
+      const float* bg = energy.cost_bg.ptr<float>(y);
+      const uchar* s = state.ptr<uchar>(y);
+      for (int x = 0; x < w; ++x) {
+        if (s[x] == kFree) node(index(x, y)).terminal = bg[x] - fg[x];
+      }
+    }
+    for (int y = 0; y < h; ++y) {
+      const float* right = energy.right.ptr<float>(y);
+      const float* down = energy.down.ptr<float>(y);
+      for (int x = 0; x < w; ++x) {
+        if (x + 1 < w) link(state, x, y, kRight, right[x]);
+        if (y + 1 < h) link(state, x, y, kDown, down[x]);
+      }
+    }
+  }
+
+  void link(const cv::Mat& state, int x, int y, Direction d, float weight) {
+    const int nx = d == kRight ? x + 1 : x, ny = d == kDown ? y + 1 : y;
+    const uchar a = state.at<uchar>(y, x), b = state.at<uchar>(ny, nx);
+    const int ia = index(x, y), ib = index(nx, ny);
+    if (a == kFree && b == kFree) {
+      node(ia).cap[static_cast<size_t>(d)] = weight;
+      node(ib).cap[static_cast<size_t>(d ^ 1)] = weight;
+    } else if (a == kFree || b == kFree) {
+      const uchar fixed = a == kFree ? b : a;
+      node(a == kFree ? ia : ib).terminal += fixed == kFixedForeground ? weight : -weight;
+    }
+  }
+
+  void enqueue(int i) {
+    if (node(i).next != kIdle) return;
+    node(i).next = kEnd;
+    if (last_ == kEnd) {
+      first_ = i;
+    } else {
+      node(last_).next = i;
+    }
+    last_ = i;
+  }
+
+  void dequeueFirst() {
+    const int i = first_;
+    first_ = node(i).next;
+    node(i).next = kIdle;
+    if (first_ == kEnd) last_ = kEnd;
+  }
+
+  // Residual capacity along the tree's direction: away from the source in its tree, towards
+  // the sink in its tree.
+  float treeResidual(std::uint8_t tree, int from, int direction) const {
+    return tree == kSourceTree ? node(from).cap[static_cast<size_t>(direction)]
+                               : node(from + offset_[direction]).cap[static_cast<size_t>(direction ^ 1)];
+  }
+
+  // Grows both trees from the active nodes until one touches the other: returns the direction
+  // from *from (left at the head of the queue, still active) to the node of the other tree.
+  int grow(int* from) {
+    while (first_ != kEnd) {
+      const int v = first_;
+      Node& nv = node(v);
+      if (nv.parent != kNone) {
+        for (int d = 0; d < 4; ++d) {
+          if (treeResidual(nv.tree, v, d) == 0) continue;
+          Node& nu = node(v + offset_[d]);
+          if (nu.parent == kNone) {
+            nu.tree = nv.tree;
+            nu.parent = static_cast<std::int8_t>(d ^ 1);
+            nu.ts = nv.ts;
+            nu.dist = nv.dist + 1;
+            enqueue(v + offset_[d]);
+          } else if (nu.tree != nv.tree) {
+            *from = v;
+            return d;
+          } else if (nu.dist > nv.dist + 1 && nu.ts <= nv.ts) {  // a shorter way to the root
+            nu.parent = static_cast<std::int8_t>(d ^ 1);
+            nu.ts = nv.ts;
+            nu.dist = nv.dist + 1;
+          }
+        }
+      }
+      dequeueFirst();
+    }
+    return -1;
+  }
+
+  // The bottleneck of the path source -> ... -> s -> t -> ... -> sink, s in the source tree.
+  float bottleneck(int s, int t, int direction) const {
+    float least = node(s).cap[static_cast<size_t>(direction)];
+    int x = s;
+    for (int p = node(x).parent; p < kTerminal; p = node(x).parent) {
+      const int up = x + offset_[p];
+      least = std::min(least, node(up).cap[static_cast<size_t>(p ^ 1)]);
+      x = up;
+    }
+    least = std::min(least, node(x).terminal);
+    x = t;
+    for (int p = node(x).parent; p < kTerminal; p = node(x).parent) {
+      least = std::min(least, node(x).cap[static_cast<size_t>(p)]);
+      x += offset_[p];
+    }
+    return std::min(least, -node(x).terminal);
+  }
+
+  void makeOrphan(int i) {
+    node(i).parent = kOrphan;
+    orphans_.push_back(i);
+  }
+
+  // Pushes the bottleneck along the path; nodes whose link to their parent (or terminal)
+  // saturates become orphans.
+  void augment(int from, int direction) {
+    int s = from, t = from + offset_[direction];
+    if (node(from).tree == kSinkTree) {
+      std::swap(s, t);
+      direction ^= 1;
+    }
+    const float flow = bottleneck(s, t, direction);
+    node(s).cap[static_cast<size_t>(direction)] -= flow;
+    node(t).cap[static_cast<size_t>(direction ^ 1)] += flow;
+    int x = s;
+    for (int p = node(x).parent; p < kTerminal; p = node(x).parent) {
+      const int up = x + offset_[p];
+      node(x).cap[static_cast<size_t>(p)] += flow;
+      if ((node(up).cap[static_cast<size_t>(p ^ 1)] -= flow) == 0) makeOrphan(x);
+      x = up;
+    }
+    if ((node(x).terminal -= flow) == 0) makeOrphan(x);
+    x = t;
+    for (int p = node(x).parent; p < kTerminal; p = node(x).parent) {
+      const int up = x + offset_[p];
+      node(up).cap[static_cast<size_t>(p ^ 1)] += flow;
+      if ((node(x).cap[static_cast<size_t>(p)] -= flow) == 0) makeOrphan(x);
+      x = up;
+    }
+    if ((node(x).terminal += flow) == 0) makeOrphan(x);
+  }
+
+  // The distance from i to its tree's root through valid parents (the root counts 1; INT_MAX
+  // when the way ends at an orphan), written on the nodes of the way with the current time so
+  // that the next orphan's search stops there.
+  int distanceToRoot(int i) {
+    int dist = 0;
+    for (int x = i;;) {
+      Node& n = node(x);
+      if (n.ts == time_) {
+        dist += n.dist;
+        break;
+      }
+      ++dist;
+      if (n.parent == kTerminal) {
+        n.ts = time_;
+        n.dist = 1;
+        break;
+      }
+      if (n.parent == kOrphan) return INT_MAX;
+      x += offset_[n.parent];
+    }
+    int remaining = dist;
+    for (int x = i; node(x).ts != time_; x += offset_[node(x).parent]) {
+      node(x).ts = time_;
+      node(x).dist = remaining--;
+    }
+    return dist;
+  }
+
+  void adoptOrphans() {
+    ++time_;
+    while (!orphans_.empty()) {
+      const int o = orphans_.back();
+      orphans_.pop_back();
+      const std::uint8_t tree = node(o).tree;
+      int best = -1, best_dist = INT_MAX;
+      for (int d = 0; d < 4; ++d) {
+        const int u = o + offset_[d];
+        if (!canParent(tree, o, d)) continue;
+        const int dist = distanceToRoot(u);
+        if (dist < INT_MAX && dist + 1 < best_dist) {
+          best_dist = dist + 1;
+          best = d;
+        }
+      }
+      if (best >= 0) {
+        node(o).parent = static_cast<std::int8_t>(best);
+        node(o).ts = time_;
+        node(o).dist = best_dist;
+        continue;
+      }
+      freeOrphan(o, tree);
+    }
+  }
+
+  // Whether the neighbour of o in direction d belongs to o's tree and can feed it.
+  bool canParent(std::uint8_t tree, int o, int d) const {
+    const Node& nu = node(o + offset_[d]);
+    return nu.tree == tree && nu.parent != kNone && treeResidual(tree, o + offset_[d], d ^ 1) != 0;
+  }
+
+  // No parent: o leaves its tree; its neighbours in the tree that could feed it become active
+  // again, and those whose parent it was become orphans.
+  void freeOrphan(int o, std::uint8_t tree) {
+    node(o).ts = 0;
+    for (int d = 0; d < 4; ++d) {
+      const int u = o + offset_[d];
+      Node& nu = node(u);
+      if (nu.tree != tree || nu.parent == kNone) continue;
+      if (treeResidual(tree, u, d ^ 1) != 0) enqueue(u);
+      if (nu.parent == (d ^ 1)) makeOrphan(u);
+    }
+    node(o).parent = kNone;
+  }
+
+  int width_;
+  std::vector<Node> nodes_;
+  std::array<int, 4> offset_;
+  std::vector<int> orphans_;
+  int first_ = kEnd, last_ = kEnd;
+  int time_ = 0;
+};
+
+}  // namespace
+
+cv::Mat labelFreePixelsOnGrid(const GridEnergy& energy, const cv::Mat& state, int* nodes) {
+  GridFlow flow(energy, state);
+  flow.run();
+  cv::Mat labels(state.size(), CV_8U);
+  *nodes = 0;
+  for (int y = 0; y < state.rows; ++y) {
+    const uchar* s = state.ptr<uchar>(y);
+    uchar* out = labels.ptr<uchar>(y);
+    for (int x = 0; x < state.cols; ++x) {
+      if (s[x] == kFree) {
+        ++*nodes;
+        out[x] = flow.onSourceSide(x, y) ? 255 : 0;
+      } else {
+        out[x] = s[x] == kFixedForeground ? 255 : 0;
+      }
+    }
+  }
+  return labels;
+}
+
+}  // namespace movseg

@@ -1,0 +1,19 @@
+// Boykov–Kolmogorov max-flow on the 4-connected pixel grid itself. The general solvers of
+// max_flow.h need the graph built as lists of nodes and edges first, which on a grid where
+// nearly every pixel is free costs as much as the flow; here a pixel's neighbours are found by
+// their offset, and its four residual capacities sit beside its terminal one. Same algorithm
+// (search trees from both terminals, augment, adopt orphans), same cut semantics as OpenCV's
+// GCGraph: a pixel ends on the source (foreground) side unless the sink's tree holds it.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include "cut/grid_energy.h"
+
+namespace movseg {
+
+// The labelling (CV_8U 0/255) that minimises `energy` over the kFree pixels of `state`, the
+// others keeping their fixed label (as labelFreePixels). *nodes: the free pixels.
+cv::Mat labelFreePixelsOnGrid(const GridEnergy& energy, const cv::Mat& state, int* nodes);
+
+}  // namespace movseg
