@@ -66,35 +66,31 @@ class GridFlow {
   // Terminal capacities (cost_bg from the source, cost_fg to the sink, less what both share)
   // and the edges between free pixels; an edge to a fixed pixel becomes terminal capacity.
   void setCapacities(const GridEnergy& energy, const cv::Mat& state) {
-    const int w = state.cols, h = state.rows;
-    for (int y = 0; y < h; ++y) {
+    for (int y = 0; y < state.rows; ++y) {
       const float* fg = energy.cost_fg.ptr<float>(y);
       const float* bg = energy.cost_bg.ptr<float>(y);
-      const uchar* s = state.ptr<uchar>(y);
-      for (int x = 0; x < w; ++x) {
-        if (s[x] == kFree) node(index(x, y)).terminal = bg[x] - fg[x];
-      }
-    }
-    for (int y = 0; y < h; ++y) {
       const float* right = energy.right.ptr<float>(y);
       const float* down = energy.down.ptr<float>(y);
-      for (int x = 0; x < w; ++x) {
-        if (x + 1 < w) link(state, x, y, kRight, right[x]);
-        if (y + 1 < h) link(state, x, y, kDown, down[x]);
+      const uchar* s = state.ptr<uchar>(y);
+      const uchar* below = y + 1 < state.rows ? state.ptr<uchar>(y + 1) : nullptr;
+      Node* row = &node(index(0, y));
+      for (int x = 0; x < state.cols; ++x) {
+        if (s[x] == kFree) row[x].terminal += bg[x] - fg[x];
+        if (x + 1 < state.cols) link(s[x], s[x + 1], right[x], kRight, &row[x], &row[x + 1]);
+        if (below) link(s[x], below[x], down[x], kDown, &row[x], &row[x + width_]);
       }
     }
   }
 
-  void link(const cv::Mat& state, int x, int y, Direction d, float weight) {
-    const int nx = d == kRight ? x + 1 : x, ny = d == kDown ? y + 1 : y;
-    const uchar a = state.at<uchar>(y, x), b = state.at<uchar>(ny, nx);
-    const int ia = index(x, y), ib = index(nx, ny);
-    if (a == kFree && b == kFree) {
-      node(ia).cap[static_cast<size_t>(d)] = weight;
-      node(ib).cap[static_cast<size_t>(d ^ 1)] = weight;
-    } else if (a == kFree || b == kFree) {
-      const uchar fixed = a == kFree ? b : a;
-      node(a == kFree ? ia : ib).terminal += fixed == kFixedForeground ? weight : -weight;
+  // The edge from a to its neighbour b in direction d (states sa, sb).
+  static void link(uchar sa, uchar sb, float weight, Direction d, Node* a, Node* b) {
+    if (sa == kFree && sb == kFree) {
+      a->cap[static_cast<size_t>(d)] = weight;
+      b->cap[static_cast<size_t>(d ^ 1)] = weight;
+    } else if (sa == kFree) {
+      a->terminal += sb == kFixedForeground ? weight : -weight;
+    } else if (sb == kFree) {
+      b->terminal += sa == kFixedForeground ? weight : -weight;
     }
   }
 
