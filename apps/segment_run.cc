@@ -184,6 +184,16 @@ class Manifest {
       : path_((fs::path(options.output_dir) / kManifestName).string()), record_(runIdentity(options)) {
     update(0, SourceReport(), false);
   }
+  // While the run goes, at most once a second: each rewrite makes a file and removes one, and
+  // after every frame they cost a whole run (480 frames at 320x240) 0.2 to 0.4 s of its 3. A
+  // run killed outright may so record up to a second's frames fewer than it wrote; every other
+  // end of a run records them all (RunOutputs::complete).
+  void progress(int frames_done, const SourceReport& source) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now < next_progress_) return;
+    next_progress_ = now + std::chrono::seconds(1);
+    update(frames_done, source, false);
+  }
   void update(int frames_done, const SourceReport& source, bool finished) {
     record_["frames_done"] = frames_done;
     record_["frames_expected"] = source.expected_frames;
@@ -195,6 +205,8 @@ class Manifest {
  private:
   std::string path_;
   nlohmann::json record_;
+  std::chrono::steady_clock::time_point next_progress_ =
+      std::chrono::steady_clock::now() + std::chrono::seconds(1);
 };
 
 // ---- stats and overlays -----------------------------------------------------------------------
@@ -339,7 +351,7 @@ class RunOutputs {
     overlay_.write(index, picture);
     frames_ = index + 1;
     source_ = source;
-    manifest_.update(frames_, source_, false);
+    manifest_.progress(frames_, source_);
   }
 
   // `whole`: the run did all it was asked (not stopped by a signal).
