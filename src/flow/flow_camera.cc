@@ -175,7 +175,8 @@ std::vector<GridSample> gridSamples(const cv::Mat& grey, int step) {
 }
 
 FlowCamera fitFlowCamera(const cv::Mat& flow, const std::vector<GridSample>& grid,
-                         const cv::Mat& moving, const Params& params, cv::RNG& rng) {
+                         const cv::Mat& moving, const Params& params, cv::RNG& rng,
+                         const cv::Matx33d* previous_model) {
   FlowCamera camera;
   const float flat = textureQuantile(grid, params.flow_texture_quantile);
   size_t background = 0;
@@ -202,7 +203,8 @@ FlowCamera fitFlowCamera(const cv::Mat& flow, const std::vector<GridSample>& gri
   options.max_trials = params.ransac_iterations;
   options.max_error = params.flow_inlier_distance;
   options.sample_grid = params.ransac_grid;
-  const auto report = Ransac<HomographyEstimator>(options).estimate(x, y, flow.size(), rng);
+  const auto report = Ransac<HomographyEstimator>(options).estimate(x, y, flow.size(), rng,
+                                                                    previous_model);
   camera.fallback = !report.success;
   if (report.success) camera.model = report.model;
   if (report.success && params.parallax)

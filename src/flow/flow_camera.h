@@ -38,9 +38,12 @@ std::vector<GridSample> gridSamples(const cv::Mat& grey, int step);
 // homography to those not marked in `moving` (CV_8U, above 127; may be empty), unless that would
 // leave too few. With `params.static_camera` the model stays the identity. With
 // `params.parallax`, then the epipole, when enough of those samples are off the plane (more than
-// twice the inlier distance) and most of them agree on one.
+// twice the inlier distance) and most of them agree on one. `previous_model`, the last pair's
+// when there is one, is scored before any sample is drawn (a warm start, as the paper's camera
+// fit has): a camera's motion changes little from one pair to the next.
 FlowCamera fitFlowCamera(const cv::Mat& flow, const std::vector<GridSample>& grid,
-                         const cv::Mat& moving, const Params& params, cv::RNG& rng);
+                         const cv::Mat& moving, const Params& params, cv::RNG& rng,
+                         const cv::Matx33d* previous_model = nullptr);
 
 // The smaller eigenvalue of the structure tensor over the 5x5 window at `p` of `grey` (CV_8U),
 // as cv::cornerMinEigenVal(grey, _, 5) gives it there: 3x3 Sobel gradients, reflected borders.

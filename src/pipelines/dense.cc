@@ -4,6 +4,8 @@
 // residual. The previous mask, carried by the flow, and colour models learnt over the stream
 // add what one pair cannot see; a graph cut on the evidence and the image's edges makes the mask.
 // A scene cut empties the mask and the memory: what the new scene moves is learnt anew.
+#include <optional>
+
 #include <opencv2/imgproc.hpp>
 
 #include "classify/scene_cut.h"
@@ -145,7 +147,9 @@ class DensePipeline : public Pipeline {
     Clock::time_point start = Clock::now();
     cv::Mat carried, evidence;
     if (!mask_.empty()) carryMask(mask_, a.flow_map, &carried);
-    FlowCamera camera = fitFlowCamera(a.flow, a.samples, carried, params_, rng_);
+    FlowCamera camera = fitFlowCamera(a.flow, a.samples, carried, params_, rng_,
+                                      last_model_ ? &*last_model_ : nullptr);
+    if (!camera.fallback) last_model_ = camera.model;
     depth_.settle(&camera);
     cameraMap(camera.model, a.grey.size(), &camera_map_);
     residualMotion(a.flow_map, camera_map_, camera, &residual_);
@@ -218,6 +222,7 @@ class DensePipeline : public Pipeline {
   cv::Mat forget(cv::Size size) {
     colour_.reset();
     depth_ = PersistentDepth();
+    last_model_.reset();
     mask_.release();
     return cv::Mat::zeros(size, CV_8U);
   }
@@ -243,6 +248,9 @@ class DensePipeline : public Pipeline {
   cv::Mat camera_map_;
   PhotometricCheck photometric_;
   PersistentDepth depth_;
+  // The last pair's camera model, the next fit's warm start. Not kept over a pair that fell back
+  // to the identity or a scene cut: a model must come from the scene it is tried on.
+  std::optional<cv::Matx33d> last_model_;
   PreviousFrame previous_;
   bool has_pair_ = false;    // the last frame had a camera model: eq. (4)'s I' can be made
   cv::Matx33d to_current_;  // that model, previous to current working pixels

@@ -60,6 +60,38 @@ TEST(FlowCamera, FitsTheCameraAroundAMarkedMoverAndLeavesItsMotionAsResidual) {
   EXPECT_NEAR(residual.at<float>(110, 150), 0.0, 0.01);
 }
 
+// Two halves of the view, mirror images of each other, each moving as a plane of its own: they
+// support the two motions exactly as well, and the fit keeps the one of the last pair (the warm
+// start) whichever it is and whatever the random draws. Without it, one draw picks one plane for
+// both.
+TEST(FlowCamera, OfTwoEquallySupportedPlanesTheLastPairsIsKept) {
+  const cv::Size half(80, 120);  // 161 wide: the samples (every 8 px from 4) mirror onto samples
+  const cv::Mat left = test::greyTexture(half, 5);
+  cv::Mat right, grey;
+  cv::flip(left, right, 1);
+  cv::hconcat(std::vector<cv::Mat>{left, cv::Mat(half.height, 1, CV_8U, cv::Scalar(128)), right},
+              grey);
+  const cv::Matx33d a(1, 0, 4, 0, 1, 0, 0, 0, 1), b(1, 0, -4, 0, 1, 1, 0, 0, 1);
+  cv::Mat flow(grey.size(), CV_32FC2);
+  for (int y = 0; y < grey.rows; ++y) {
+    for (int x = 0; x < grey.cols; ++x) {
+      const cv::Matx33d& m = x <= 80 ? a : b;
+      flow.at<cv::Vec2f>(y, x) = cv::Vec2f(static_cast<float>(m(0, 2)), static_cast<float>(m(1, 2)));
+    }
+  }
+  const Params params;
+  const std::vector<GridSample> samples = gridSamples(grey, params.flow_sample_step);
+  for (const cv::Matx33d& last : {a, b}) {
+    for (const std::uint64_t seed : {1u, 2u, 3u, 4u}) {
+      cv::RNG rng(seed);
+      const FlowCamera fit = fitFlowCamera(flow, samples, cv::Mat(), params, rng, &last);
+      ASSERT_FALSE(fit.fallback);
+      EXPECT_LT(cv::norm(cv::Matx33d(fit.model * (1.0 / fit.model(2, 2))) - last), 1e-3)
+          << "seed " << seed << ", last pair's x shift " << last(0, 2);
+    }
+  }
+}
+
 // A camera moving sideways: the far wall's flow (current -> previous) is 2 px to the right, and
 // the lowest 30 % of the rows, a strip too small to show depth everywhere (under 28 cells), move
 // `strip(y)`. Returns the fit's reading of depth.
