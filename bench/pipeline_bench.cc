@@ -126,7 +126,8 @@ void BM_GeodesicDistances(benchmark::State& state) {
 void BM_GraphCut(benchmark::State& state) {
   StageInputs in(synthPair(state));
   in.params.cut_band = static_cast<int>(state.range(2));
-  const MaxFlowSolver solvers[] = {MaxFlowSolver::kOpenCv, MaxFlowSolver::kBoost, MaxFlowSolver::kGrid};
+  const MaxFlowSolver solvers[] = {MaxFlowSolver::kOpenCv, MaxFlowSolver::kBoost,
+                                   MaxFlowSolver::kGrid};
   const MaxFlowSolver solver = solvers[state.range(3)];
   int nodes = 0;
   for (auto _ : state) {

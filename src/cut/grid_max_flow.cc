@@ -19,7 +19,8 @@ constexpr int kEnd = -1, kIdle = -2;  // Node::next: last in the active queue; n
 struct Node {
   std::array<float, 4> cap{};  // residual capacity to the neighbour in each direction
   float terminal = 0;          // > 0: residual from the source; < 0: to the sink
-  int ts = 0, dist = 0;        // when the distance to the tree's root was last known, and it
+  int ts = 0, dist = 0;        // when the distance to the tree's root was last worked out, and
+                               // that distance (the root counts 1)
   int next = kIdle;            // the active queue
   std::int8_t parent = kNone;
   std::uint8_t tree = kSourceTree;
@@ -115,8 +116,9 @@ class GridFlow {
   // Residual capacity along the tree's direction: away from the source in its tree, towards
   // the sink in its tree.
   float treeResidual(std::uint8_t tree, int from, int direction) const {
+    const int to = from + offset_[direction];
     return tree == kSourceTree ? node(from).cap[static_cast<size_t>(direction)]
-                               : node(from + offset_[direction]).cap[static_cast<size_t>(direction ^ 1)];
+                               : node(to).cap[static_cast<size_t>(direction ^ 1)];
   }
 
   // Grows both trees from the active nodes until one touches the other: returns the direction

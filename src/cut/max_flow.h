@@ -34,7 +34,8 @@ struct FlowGraph {
 enum class MaxFlowSolver {
   kOpenCv,  // cv::detail::GCGraph, OpenCV's Boykov–Kolmogorov (used by GrabCut)
   kBoost,   // boost::boykov_kolmogorov_max_flow (Boost.Graph)
-  kGrid,    // the same algorithm on the pixel grid itself (cut/grid_max_flow.h), for GridEnergy
+  kGrid,    // the same on the pixel grid itself (cut/grid_max_flow.h): GridEnergy solves only
+            // (labelFreePixels); minimumCut of a FlowGraph takes it as kOpenCv
 };
 
 // 1 where the node ends on the source side (foreground).

@@ -76,7 +76,8 @@ TEST(FlowCamera, OfTwoEquallySupportedPlanesTheLastPairsIsKept) {
   for (int y = 0; y < grey.rows; ++y) {
     for (int x = 0; x < grey.cols; ++x) {
       const cv::Matx33d& m = x <= 80 ? a : b;
-      flow.at<cv::Vec2f>(y, x) = cv::Vec2f(static_cast<float>(m(0, 2)), static_cast<float>(m(1, 2)));
+      flow.at<cv::Vec2f>(y, x) =
+          cv::Vec2f(static_cast<float>(m(0, 2)), static_cast<float>(m(1, 2)));
     }
   }
   const Params params;
