@@ -184,6 +184,9 @@ class GridFlow {
       direction ^= 1;
     }
     const float flow = bottleneck(s, t, direction);
+    // Every capacity on the path is positive, unless one is NaN: then nothing would saturate
+    // and the same path would be found for ever. Stop, as GCGraph does.
+    CV_Assert(flow > 0);
     node(s).cap[static_cast<size_t>(direction)] -= flow;
     node(t).cap[static_cast<size_t>(direction ^ 1)] += flow;
     int x = s;

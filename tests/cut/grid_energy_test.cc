@@ -3,6 +3,8 @@
 // boundary exactly.
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <opencv2/imgproc.hpp>
 
 #include "cut/grid_energy.h"
@@ -80,6 +82,20 @@ TEST(GridEnergy, TheGridSolverFindsTheMinimumOpenCvFinds) {
       }
     }
   }
+}
+
+// A NaN among the capacities never saturates: the grid solver stops with an error, as
+// OpenCV's refuses such an edge, instead of pushing along the same path for ever.
+TEST(GridEnergy, TheGridSolverRefusesANanCapacity) {
+  GridEnergy e = randomEnergy({12, 8}, 7);
+  e.cost_bg.setTo(0);
+  e.cost_fg.setTo(0);
+  e.cost_bg.at<float>(3, 4) = 1.f;  // a source there, a sink beside it, a NaN edge between
+  e.cost_fg.at<float>(3, 5) = 1.f;
+  e.right.at<float>(3, 4) = std::numeric_limits<float>::quiet_NaN();
+  int nodes = 0;
+  EXPECT_THROW(labelFreePixels(e, cv::Mat::zeros(8, 12, CV_8U), MaxFlowSolver::kGrid, &nodes),
+               cv::Exception);
 }
 
 // Two flat halves with a boundary at an odd column: the blocks place it within a pixel, the
