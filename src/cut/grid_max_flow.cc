@@ -26,8 +26,9 @@ struct Node {
   std::uint8_t tree = kSourceTree;
 };
 
-// The grid padded by one node on every side (parent kNone, no capacity), so that every node of
-// the image has four neighbours to look at.
+// The max-flow of one energy: built, run() once, then read by onSourceSide(). The grid is
+// padded by one node on every side (parent kNone, no capacity), so that every node of the
+// image has four neighbours to look at.
 class GridFlow {
  public:
   GridFlow(const GridEnergy& energy, const cv::Mat& state)
@@ -113,8 +114,9 @@ class GridFlow {
     if (first_ == kEnd) last_ = kEnd;
   }
 
-  // Residual capacity along the tree's direction: away from the source in its tree, towards
-  // the sink in its tree.
+  // The residual capacity a tree grows along from `from` to its neighbour in `direction`: from
+  // -> neighbour in the source's tree (flow leaves the source), neighbour -> from in the sink's
+  // (flow goes to the sink).
   float treeResidual(std::uint8_t tree, int from, int direction) const {
     const int to = from + offset_[direction];
     return tree == kSourceTree ? node(from).cap[static_cast<size_t>(direction)]
@@ -224,7 +226,7 @@ class GridFlow {
         n.dist = 1;
         break;
       }
-      if (n.parent == kOrphan) return INT_MAX;
+      if (n.parent > kTerminal) return INT_MAX;  // an orphan (a free node cannot be on the way)
       x += offset_[n.parent];
     }
     int remaining = dist;
