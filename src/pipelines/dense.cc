@@ -248,8 +248,9 @@ class DensePipeline : public Pipeline {
   cv::Mat camera_map_;
   PhotometricCheck photometric_;
   PersistentDepth depth_;
-  // The last pair's camera model, the next fit's warm start. Not kept over a pair that fell back
-  // to the identity or a scene cut: a model must come from the scene it is tried on.
+  // The last fitted camera model, the next fit's warm start: a pair that fell back to the
+  // identity leaves it as it was, a scene cut forgets it (a model must come from the scene it
+  // is tried on).
   std::optional<cv::Matx33d> last_model_;
   PreviousFrame previous_;
   bool has_pair_ = false;    // the last frame had a camera model: eq. (4)'s I' can be made
