@@ -7,6 +7,7 @@
 
 #include "core/frame.h"
 #include "cut/grid_energy.h"
+#include "cut/grid_max_flow.h"
 
 namespace movseg {
 namespace {
@@ -52,7 +53,8 @@ void contrastWeights(const cv::Mat& bgr, double smoothness, GridEnergy* energy) 
 
 }  // namespace
 
-cv::Mat cutEvidence(const cv::Mat& evidence, const cv::Mat& bgr, double smoothness, int* nodes) {
+cv::Mat cutEvidence(const cv::Mat& evidence, const cv::Mat& bgr, double smoothness,
+                    GridMaxFlow* memory, int* nodes) {
   const cv::Size blocks = scaledSize(bgr.size(), (bgr.cols + 1) / 2);
   GridEnergy energy;
   cv::Mat block_evidence, block_bgr;
@@ -61,8 +63,7 @@ cv::Mat cutEvidence(const cv::Mat& evidence, const cv::Mat& bgr, double smoothne
   energy.cost_bg = cv::max(block_evidence, 0.0);
   energy.cost_fg = cv::max(-block_evidence, 0.0);
   contrastWeights(block_bgr, smoothness, &energy);
-  const cv::Mat labels =
-      labelFreePixels(energy, decidedPixels(energy), MaxFlowSolver::kGrid, nodes);
+  const cv::Mat labels = memory->label(energy, decidedPixels(energy), nodes);
   return upscaledMask(labels, bgr.size());
 }
 

@@ -7,9 +7,12 @@
 
 namespace movseg {
 
+class GridMaxFlow;
+
 // `evidence` CV_32F and `bgr` 8-bit BGR of the same size. `smoothness`: the weight of an edge
 // between two blocks of equal colour, in units of evidence. Returns CV_8U 0/255 of bgr's size;
-// *nodes: the blocks left to the max-flow.
-cv::Mat cutEvidence(const cv::Mat& evidence, const cv::Mat& bgr, double smoothness, int* nodes);
+// *nodes: the blocks left to the max-flow, solved in `memory` (grid_max_flow.h).
+cv::Mat cutEvidence(const cv::Mat& evidence, const cv::Mat& bgr, double smoothness,
+                    GridMaxFlow* memory, int* nodes);
 
 }  // namespace movseg

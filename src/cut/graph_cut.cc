@@ -70,7 +70,7 @@ void pairwiseWeights(const cv::Mat& colour, const cv::Mat& confidence, double we
 
 CutResult geodesicGraphCut(const cv::Mat& bgr, const std::vector<cv::Point>& foreground,
                            const std::vector<cv::Point>& background, const Params& params,
-                           MaxFlowSolver solver) {
+                           MaxFlowSolver solver, GridMaxFlow* memory) {
   cv::Mat colour;
   bgr.convertTo(colour, CV_32FC3, 1.0 / 255.0);
   const GeodesicGrid grid(colour, params.geodesic_gamma);
@@ -84,9 +84,10 @@ CutResult geodesicGraphCut(const cv::Mat& bgr, const std::vector<cv::Point>& for
   // The cut can only move the boundary of the geodesic labelling (D_F < D_B) so far
   // (docs/design.md): the pixels farther than the band keep that label. Not exact.
   if (params.cut_band > 0) fixAwayFromBoundary(energy.cost_fg < energy.cost_bg, params.cut_band, &state);
-  result.mask = params.cut_refine > 0
-                    ? labelCoarseToFine(energy, state, params.cut_refine, solver, &result.graph_nodes)
-                    : labelFreePixels(energy, state, solver, &result.graph_nodes);
+  result.mask = params.cut_refine > 0 ? labelCoarseToFine(energy, state, params.cut_refine, solver,
+                                                          &result.graph_nodes, memory)
+                                      : labelFreePixels(energy, state, solver,
+                                                        &result.graph_nodes, memory);
   return result;
 }
 

@@ -16,9 +16,13 @@ struct CutResult {
   int graph_nodes = 0; // pixels left to the max-flow after the exact reduction
 };
 
+class GridMaxFlow;
+
 // Segments `bgr` from foreground and background seed pixels. Needs at least one seed of each.
+// `memory`: where the kGrid solver keeps its nodes between calls (labelFreePixels).
 CutResult geodesicGraphCut(const cv::Mat& bgr, const std::vector<cv::Point>& foreground,
                            const std::vector<cv::Point>& background, const Params& params,
-                           MaxFlowSolver solver = MaxFlowSolver::kGrid);
+                           MaxFlowSolver solver = MaxFlowSolver::kGrid,
+                           GridMaxFlow* memory = nullptr);
 
 }  // namespace movseg

@@ -86,8 +86,11 @@ cv::Mat blockState(const cv::Mat& state) {
 }  // namespace
 
 cv::Mat labelFreePixels(const GridEnergy& energy, const cv::Mat& state, MaxFlowSolver solver,
-                        int* nodes) {
-  if (solver == MaxFlowSolver::kGrid) return labelFreePixelsOnGrid(energy, state, nodes);
+                        int* nodes, GridMaxFlow* memory) {
+  if (solver == MaxFlowSolver::kGrid) {
+    if (memory) return memory->label(energy, state, nodes);
+    return GridMaxFlow().label(energy, state, nodes);
+  }
   cv::Mat node;
   const FlowGraph graph = freePixelGraph(energy, state, &node);
   *nodes = graph.nodes();
@@ -138,14 +141,15 @@ void fixAwayFromBoundary(const cv::Mat& labels, int band, cv::Mat* state) {
 }
 
 cv::Mat labelCoarseToFine(const GridEnergy& energy, const cv::Mat& state, int refine,
-                          MaxFlowSolver solver, int* nodes) {
+                          MaxFlowSolver solver, int* nodes, GridMaxFlow* memory) {
   int coarse_nodes = 0, fine_nodes = 0;
-  const cv::Mat blocks = labelFreePixels(coarsened(energy), blockState(state), solver, &coarse_nodes);
+  const cv::Mat blocks =
+      labelFreePixels(coarsened(energy), blockState(state), solver, &coarse_nodes, memory);
   cv::Mat labels;
   cv::resize(blocks, labels, state.size(), 0, 0, cv::INTER_NEAREST);
   cv::Mat fine_state = state.clone();
   fixAwayFromBoundary(labels, refine, &fine_state);
-  labels = labelFreePixels(energy, fine_state, solver, &fine_nodes);
+  labels = labelFreePixels(energy, fine_state, solver, &fine_nodes, memory);
   *nodes = coarse_nodes + fine_nodes;
   return labels;
 }

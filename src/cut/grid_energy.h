@@ -9,6 +9,8 @@
 
 namespace movseg {
 
+class GridMaxFlow;
+
 struct GridEnergy {
   cv::Mat cost_fg, cost_bg;  // CV_32F: the cost of labelling each pixel foreground / background
   cv::Mat right, down;       // CV_32F: the weight of the edge to the right / lower neighbour
@@ -32,9 +34,10 @@ cv::Mat decidedPixels(const GridEnergy& energy);
 
 // The labelling (CV_8U 0/255) that minimises the energy over the kFree pixels of `state`, the
 // others keeping their fixed label; a free pixel's edge to a fixed one becomes part of its
-// unary cost. *nodes: the free pixels.
+// unary cost. *nodes: the free pixels. `memory`: where kGrid's solver keeps its nodes between
+// calls (a pipeline's own, so that its frames reuse them); null: a temporary one.
 cv::Mat labelFreePixels(const GridEnergy& energy, const cv::Mat& state, MaxFlowSolver solver,
-                        int* nodes);
+                        int* nodes, GridMaxFlow* memory = nullptr);
 
 // The energy of 2x2 blocks: a block's costs are the sums of its pixels', the weight between two
 // blocks the sum of the pixel edges that cross from one to the other. So a labelling of the
@@ -44,9 +47,10 @@ GridEnergy coarsened(const GridEnergy& energy);
 // Minimises the energy over the free pixels of `state` in two steps: the 2x2 blocks first
 // (each block free when any of its pixels is), then the pixels within `refine` of a boundary of
 // the blocks' labelling, the others keeping their block's label. Not exact: a boundary is found
-// at the coarse scale and moved by at most `refine` pixels. *nodes: both graphs' nodes.
+// at the coarse scale and moved by at most `refine` pixels. *nodes: both graphs' nodes;
+// `memory` as labelFreePixels'.
 cv::Mat labelCoarseToFine(const GridEnergy& energy, const cv::Mat& state, int refine,
-                          MaxFlowSolver solver, int* nodes);
+                          MaxFlowSolver solver, int* nodes, GridMaxFlow* memory = nullptr);
 
 // Fixes every free pixel of `state` farther than `band` (Chebyshev distance) from the boundary
 // of `labels` (CV_8U 0/255) to its label there.

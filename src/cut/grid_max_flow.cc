@@ -16,7 +16,9 @@ constexpr std::int8_t kTerminal = 4, kOrphan = 5, kNone = 6;
 enum Tree : std::uint8_t { kSourceTree = 0, kSinkTree = 1 };
 constexpr int kEnd = -1, kIdle = -2;  // Node::next: last in the active queue; not in it
 
-struct Node {
+}  // namespace
+
+struct GridMaxFlow::Node {
   std::array<float, 4> cap{};  // residual capacity to the neighbour in each direction
   float terminal = 0;          // > 0: residual from the source; < 0: to the sink
   int ts = 0, dist = 0;        // when the distance to the tree's root was last worked out, and
@@ -26,15 +28,23 @@ struct Node {
   std::uint8_t tree = kSourceTree;
 };
 
-// The max-flow of one energy: built, run() once, then read by onSourceSide(). The grid is
-// padded by one node on every side (parent kNone, no capacity), so that every node of the
-// image has four neighbours to look at.
+namespace {
+
+using Node = GridMaxFlow::Node;
+
+// The max-flow of one energy, on nodes and orphans that a GridMaxFlow keeps: built, run()
+// once, then read by onSourceSide(). The grid is padded by one node on every side (parent
+// kNone, no capacity), so that every node of the image has four neighbours to look at.
 class GridFlow {
  public:
-  GridFlow(const GridEnergy& energy, const cv::Mat& state)
+  GridFlow(const GridEnergy& energy, const cv::Mat& state, std::vector<Node>* nodes,
+           std::vector<int>* orphans)
       : width_(state.cols + 2),
-        nodes_(static_cast<size_t>((state.cols + 2) * (state.rows + 2))),
+        nodes_(*nodes),
+        orphans_(*orphans),
         offset_{1, -1, state.cols + 2, -(state.cols + 2)} {
+    nodes_.assign(static_cast<size_t>((state.cols + 2) * (state.rows + 2)), Node());
+    orphans_.clear();
     setCapacities(energy, state);
     for (int i = 0; i < static_cast<int>(nodes_.size()); ++i) {
       Node& n = nodes_[static_cast<size_t>(i)];
@@ -284,17 +294,20 @@ class GridFlow {
   }
 
   int width_;
-  std::vector<Node> nodes_;
+  std::vector<Node>& nodes_;
+  std::vector<int>& orphans_;
   std::array<int, 4> offset_;
-  std::vector<int> orphans_;
   int first_ = kEnd, last_ = kEnd;
   int time_ = 0;
 };
 
 }  // namespace
 
-cv::Mat labelFreePixelsOnGrid(const GridEnergy& energy, const cv::Mat& state, int* nodes) {
-  GridFlow flow(energy, state);
+GridMaxFlow::GridMaxFlow() = default;
+GridMaxFlow::~GridMaxFlow() = default;
+
+cv::Mat GridMaxFlow::label(const GridEnergy& energy, const cv::Mat& state, int* nodes) {
+  GridFlow flow(energy, state, &nodes_, &orphans_);
   flow.run();
   cv::Mat labels(state.size(), CV_8U);
   *nodes = 0;

@@ -6,14 +6,31 @@
 // GCGraph: a pixel ends on the source (foreground) side unless the sink's tree holds it.
 #pragma once
 
+#include <vector>
+
 #include <opencv2/core.hpp>
 
 #include "cut/grid_energy.h"
 
 namespace movseg {
 
-// The labelling (CV_8U 0/255) that minimises `energy` over the kFree pixels of `state`, the
-// others keeping their fixed label (as labelFreePixels). *nodes: the free pixels.
-cv::Mat labelFreePixelsOnGrid(const GridEnergy& energy, const cv::Mat& state, int* nodes);
+// Keeps its nodes between calls, as OpenCV's DIS keeps its buffers: a pipeline that owns one
+// allocates the graph of a frame size once, not per frame (a 320x240 grid is 2.8 MB, which
+// glibc would otherwise hand back to the kernel and fault in again).
+class GridMaxFlow {
+ public:
+  GridMaxFlow();
+  ~GridMaxFlow();
+
+  // The labelling (CV_8U 0/255) that minimises `energy` over the kFree pixels of `state`, the
+  // others keeping their fixed label (as labelFreePixels). *nodes: the free pixels.
+  cv::Mat label(const GridEnergy& energy, const cv::Mat& state, int* nodes);
+
+  struct Node;  // a pixel's residual capacities and its place in the search trees
+
+ private:
+  std::vector<Node> nodes_;
+  std::vector<int> orphans_;
+};
 
 }  // namespace movseg

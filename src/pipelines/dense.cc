@@ -12,6 +12,7 @@
 #include "core/frame.h"
 #include "core/timing.h"
 #include "cut/evidence_cut.h"
+#include "cut/grid_max_flow.h"
 #include "evidence/colour_model.h"
 #include "evidence/motion_evidence.h"
 #include "flow/dense_flow.h"
@@ -184,7 +185,7 @@ class DensePipeline : public Pipeline {
     diag.classify_ms = millisecondsSince(start);
 
     start = Clock::now();
-    mask_ = cutEvidence(unary, a.bgr, params_.smoothness, &diag.cut_nodes);
+    mask_ = cutEvidence(unary, a.bgr, params_.smoothness, &max_flow_, &diag.cut_nodes);
     diag.cut_ms = millisecondsSince(start);
     debug.put("residual", [&] {  // mid-grey: as large as the background's residual in this pair
       cv::Mat picture;
@@ -247,6 +248,7 @@ class DensePipeline : public Pipeline {
   cv::Mat pair_evidence_;  // the pair's evidence before memory, for the colour model
   cv::Mat camera_map_;
   PhotometricCheck photometric_;
+  GridMaxFlow max_flow_;
   PersistentDepth depth_;
   // The last fitted camera model, the next fit's warm start: a pair that fell back to the
   // identity leaves it as it was, a scene cut forgets it (a model must come from the scene it

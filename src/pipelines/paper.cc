@@ -8,6 +8,7 @@
 #include "core/timing.h"
 #include "cut/cut_debug.h"
 #include "cut/graph_cut.h"
+#include "cut/grid_max_flow.h"
 #include "motion/camera_tracker.h"
 #include "motion/model.h"
 #include "motion/motion_debug.h"
@@ -115,8 +116,8 @@ class PaperPipeline : public Pipeline {
     } else if (seeds.background.empty()) {
       mask = difference > classes.lambda;  // nothing to oppose the cut: eq. (3) alone decides
     } else {
-      const CutResult cut =
-          geodesicGraphCut(cur.seg_bgr, seeds.foreground, seeds.background, params_);
+      const CutResult cut = geodesicGraphCut(cur.seg_bgr, seeds.foreground, seeds.background,
+                                             params_, MaxFlowSolver::kGrid, &max_flow_);
       debug.put("confidence", [&] { return drawConfidence(cut.confidence); });
       mask = cut.mask;
       cut_nodes = cut.graph_nodes;
@@ -139,6 +140,7 @@ class PaperPipeline : public Pipeline {
 
   Params params_;
   CameraTracker tracker_;
+  GridMaxFlow max_flow_;
 };
 
 }  // namespace

@@ -5,8 +5,11 @@
 
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "alloc/counting_malloc.h"
+#include "cut/grid_energy.h"
+#include "cut/grid_max_flow.h"
 #include "movseg/segmenter.h"
 #include "synth/synth.h"
 
@@ -31,6 +34,27 @@ TEST(Allocations, TheCounterSeesNewVectorsAndOpenCvBuffers) {
   EXPECT_EQ(after_vector, 2);
   EXPECT_GT(after_mat, after_vector);
   EXPECT_EQ(after_reuse, after_mat);
+}
+
+// A disc that prefers the foreground, on a background that prefers the background.
+GridEnergy discEnergy(cv::Size size) {
+  cv::Mat preference(size, CV_32F, cv::Scalar(-0.5));
+  cv::circle(preference, {size.width / 2, size.height / 2}, size.height / 3, cv::Scalar(0.5), -1);
+  return {cv::max(-preference, 0.0), cv::max(preference, 0.0),
+          cv::Mat(size, CV_32F, cv::Scalar(1)), cv::Mat(size, CV_32F, cv::Scalar(1))};
+}
+
+TEST(Allocations, TheGridMaxFlowKeepsItsNodesBetweenCalls) {
+  const GridEnergy energy = discEnergy({320, 240});
+  const cv::Mat all_free = cv::Mat::zeros(240, 320, CV_8U);
+  GridMaxFlow max_flow;
+  int nodes = 0;
+  const cv::Mat first = max_flow.label(energy, all_free, &nodes);
+  ASSERT_GT(cv::countNonZero(first), 0);
+  test::CountAllocations counter;
+  const cv::Mat second = max_flow.label(energy, all_free, &nodes);
+  EXPECT_LE(counter.count(), 2);  // the labels returned: a cv::Mat's data and its header
+  EXPECT_EQ(cv::countNonZero(first != second), 0);
 }
 
 // Allocations per frame of `method` on a 320x240 clip, after the first frames have sized every
