@@ -129,10 +129,13 @@ PreparedFrame prepareFrame(const cv::Mat& bgr, const Params& params) {
 }
 
 cv::Mat upscaledMask(const cv::Mat& mask, cv::Size size) {
-  if (mask.size() == size) return mask;
   cv::Mat out;
-  cv::resize(mask, out, size, 0, 0, cv::INTER_LINEAR);
-  cv::threshold(out, out, 127, 255, cv::THRESH_BINARY);
+  if (mask.size() == size) {
+    cv::threshold(mask, out, 127, 255, cv::THRESH_BINARY);
+  } else {
+    cv::resize(mask, out, size, 0, 0, cv::INTER_LINEAR);
+    cv::threshold(out, out, 127, 255, cv::THRESH_BINARY);
+  }
   return out;
 }
 

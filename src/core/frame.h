@@ -55,8 +55,9 @@ struct PreparedFrame {
 
 PreparedFrame prepareFrame(const cv::Mat& bgr, const Params& params);
 
-// A 0/255 mask resized to `size` by bilinear interpolation and re-thresholded, so that a mask
-// computed at a working scale has smooth rather than blocky boundaries at full resolution.
+// A mask (CV_8U, above 127 moving) resized to `size` by bilinear interpolation and thresholded
+// to 0/255, so that a mask computed at a working scale has smooth rather than blocky boundaries
+// at full resolution; grey levels along its outline (EdgeSnap's) place it between pixels.
 cv::Mat upscaledMask(const cv::Mat& mask, cv::Size size);
 
 }  // namespace movseg

@@ -20,6 +20,7 @@
 #include "motion/compensation.h"
 #include "motion/model.h"
 #include "pipelines/pipeline.h"
+#include "refine/edge_snap.h"
 
 namespace movseg {
 namespace {
@@ -186,6 +187,7 @@ class DensePipeline : public Pipeline {
 
     start = Clock::now();
     mask_ = cutEvidence(unary, a.bgr, params_.smoothness, &max_flow_, &diag.cut_nodes);
+    const cv::Mat mask = edge_snap_.snap(mask_, a.bgr, params_.edge_snap);
     diag.cut_ms = millisecondsSince(start);
     debug.put("residual", [&] {  // mid-grey: as large as the background's residual in this pair
       cv::Mat picture;
@@ -205,7 +207,7 @@ class DensePipeline : public Pipeline {
       unary.convertTo(picture, CV_8U, 25.0, 128.0);
       return picture;
     });
-    return mask_;
+    return mask;
   }
 
   void reset() override { flow_.reset(); }
@@ -249,6 +251,7 @@ class DensePipeline : public Pipeline {
   cv::Mat camera_map_;
   PhotometricCheck photometric_;
   GridMaxFlow max_flow_;
+  EdgeSnap edge_snap_;
   PersistentDepth depth_;
   // The last fitted camera model, the next fit's warm start: a pair that fell back to the
   // identity leaves it as it was, a scene cut forgets it (a model must come from the scene it

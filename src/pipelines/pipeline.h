@@ -53,7 +53,8 @@ class Pipeline {
   // `bgr` is 8-bit BGR, the pipeline's to keep.
   virtual void analyse(const cv::Mat& bgr, Analysis* analysis) = 0;
 
-  // Phase 2: the mask (0 / 255, at any scale: the frame loop scales it to the frame) of the
+  // Phase 2: the mask (CV_8U, above 127 moving, at any scale: the frame loop scales it to the
+  // frame and makes it 0 / 255) of the
   // analysed frame; fills result->features, the diagnostics of the pipeline's stages, and
   // `debug`. A first-frame analysis makes it forget what it remembers of earlier frames.
   virtual cv::Mat segment(const Analysis& analysis, const DebugSink& debug, Result* result) = 0;
