@@ -5,12 +5,6 @@
 namespace movseg {
 namespace {
 
-// The guided filter's regulariser, in squared grey levels: within a window whose brightness
-// varies less than about 10 levels, the mask is smoothed rather than made to follow the image,
-// so that noise and faint texture do not shape the outline (300: DAVIS J 0.0003 less;
-// docs/design.md, "Edges").
-constexpr float kEpsilon = 100.f;
-
 // A window's mean label strictly between these holds both labels: the outline crosses it.
 constexpr float kMixedLow = 1e-4f, kMixedHigh = 1.f - 1e-4f;
 
@@ -80,7 +74,7 @@ cv::Mat EdgeSnap::snap(const cv::Mat& mask, const cv::Mat& bgr, int radius) {
   windowMean(square_, radius, &scratch_, &mean_square_);
   windowMean(label_, radius, &scratch_, &mean_label_);
   windowMean(masked_guide_, radius, &scratch_, &mean_masked_guide_);
-  // Each window's least-squares line label = slope * grey + offset, regularised by kEpsilon;
+  // Each window's least-squares line label = slope * grey + offset, regularised by kRegulariser;
   // a window of one label keeps it (slope 0).
   slope_.create(guide_.size(), CV_32F);
   offset_.create(guide_.size(), CV_32F);
@@ -94,20 +88,27 @@ cv::Mat EdgeSnap::snap(const cv::Mat& mask, const cv::Mat& bgr, int radius) {
     for (int x = 0; x < guide_.cols; ++x) {
       const bool mixed = label[x] > kMixedLow && label[x] < kMixedHigh;
       const float variance = square[x] - grey[x] * grey[x];
-      slope[x] = mixed ? (masked[x] - grey[x] * label[x]) / (variance + kEpsilon) : 0.f;
+      slope[x] = mixed ? (masked[x] - grey[x] * label[x]) / (variance + kRegulariser) : 0.f;
       offset[x] = label[x] - slope[x] * grey[x];
     }
   }
   windowMean(slope_, radius, &scratch_, &mean_slope_);
   windowMean(offset_, radius, &scratch_, &mean_offset_);
+  // Parts of the mask narrower than a 3x3 cross (legs, poles, a mover's tip at the working
+  // scale) are narrower than any window: the filter would average them away, so it does not
+  // decide them.
+  cv::morphologyEx(mask(region), opened_, cv::MORPH_OPEN,
+                   cv::getStructuringElement(cv::MORPH_CROSS, {3, 3}));
   cv::Mat snapped = mask.clone();
   for (int y = 0; y < guide_.rows; ++y) {
     const float* grey = guide_.ptr<float>(y);
     const float* slope = mean_slope_.ptr<float>(y);
     const float* offset = mean_offset_.ptr<float>(y);
+    const uchar* opened = opened_.ptr<uchar>(y);
     uchar* out = snapped.ptr<uchar>(y + region.y) + region.x;
     for (int x = 0; x < guide_.cols; ++x) {
-      out[x] = cv::saturate_cast<uchar>(255.f * (slope[x] * grey[x] + offset[x]));
+      const bool thin = out[x] != opened[x];
+      out[x] = thin ? 255 : cv::saturate_cast<uchar>(255.f * (slope[x] * grey[x] + offset[x]));
     }
   }
   return snapped;
