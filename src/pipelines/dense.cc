@@ -21,6 +21,7 @@
 #include "motion/model.h"
 #include "pipelines/pipeline.h"
 #include "refine/edge_snap.h"
+#include "refine/refine_debug.h"
 
 namespace movseg {
 namespace {
@@ -207,6 +208,7 @@ class DensePipeline : public Pipeline {
       unary.convertTo(picture, CV_8U, 25.0, 128.0);
       return picture;
     });
+    debug.put("edges", [&] { return drawEdgeSnap(a.bgr, mask_, mask); });
     return mask;
   }
 

@@ -1,0 +1,13 @@
+// Debug picture of the edge snap: where it moved the cut's outline.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+namespace movseg {
+
+// The frame (8-bit BGR) darkened, the cut's mask (`cut`, CV_8U 0/255) grey over it, the pixels
+// the snap added to it green and those it took away red (`snapped`: EdgeSnap's output, above
+// 127 moving).
+cv::Mat drawEdgeSnap(const cv::Mat& bgr, const cv::Mat& cut, const cv::Mat& snapped);
+
+}  // namespace movseg
