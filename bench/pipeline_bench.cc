@@ -1,5 +1,6 @@
 // Timings of the paper's stages on synthetic frame pairs at 320x240 and 640x480, of `dense`'s
-// edge snap beside the guided filter of OpenCV's ximgproc, and of every method's whole pipeline on synthetic and DAVIS clips beside OpenCV MOG2 (method mog2).
+// edge snap beside the guided filter of OpenCV's ximgproc, and of every method's whole
+// pipeline on synthetic and DAVIS clips beside OpenCV MOG2 (method mog2).
 //   build/bench/movseg_bench [--benchmark_filter=...]
 // Each paper stage runs on the output of the previous ones for the same pair, exactly as in the
 // paper's pipeline (src/pipelines/paper.cc), so the stage times add up to the pipeline's. The

@@ -2,7 +2,8 @@
 // frame), the camera's share is removed (a homography fitted to the flow of the background), and
 // what remains becomes evidence of independent motion, scaled by the pair's own background
 // residual. The previous mask, carried by the flow, and colour models learnt over the stream
-// add what one pair cannot see; a graph cut on the evidence and the image's edges makes the mask.
+// add what one pair cannot see; a graph cut on the evidence and the image's edges makes the mask,
+// whose outline a guided filter then moves onto the edges themselves.
 // A scene cut empties the mask and the memory: what the new scene moves is learnt anew.
 #include <optional>
 

@@ -78,7 +78,8 @@ TEST(EdgeSnap, LeavesEveryPixelAwayFromTheOutlineAsItWas) {
   const int radius = 3;
   const cv::Mat snapped = EdgeSnap().snap(mask, bgr, radius);
   cv::Mat grown, shrunk;
-  const cv::Mat window = cv::getStructuringElement(cv::MORPH_RECT, {4 * radius + 1, 4 * radius + 1});
+  const cv::Mat window =
+      cv::getStructuringElement(cv::MORPH_RECT, {4 * radius + 1, 4 * radius + 1});
   cv::dilate(mask, grown, window);
   cv::erode(mask, shrunk, window);
   const cv::Mat away = grown == shrunk;  // no outline within two radii
