@@ -129,9 +129,13 @@ PreparedFrame prepareFrame(const cv::Mat& bgr, const Params& params) {
 }
 
 cv::Mat upscaledMask(const cv::Mat& mask, cv::Size size) {
-  cv::Mat resized = mask, out;
-  if (mask.size() != size) cv::resize(mask, resized, size, 0, 0, cv::INTER_LINEAR);
-  cv::threshold(resized, out, 127, 255, cv::THRESH_BINARY);
+  cv::Mat out;
+  if (mask.size() == size) {
+    cv::threshold(mask, out, 127, 255, cv::THRESH_BINARY);
+  } else {  // one image, thresholded in place
+    cv::resize(mask, out, size, 0, 0, cv::INTER_LINEAR);
+    cv::threshold(out, out, 127, 255, cv::THRESH_BINARY);
+  }
   return out;
 }
 

@@ -75,12 +75,13 @@ double allocationsPerFrame(Method method) {
   return static_cast<double>(counter.count()) / static_cast<double>(frames.size() - kWarmUp);
 }
 
-// Not zero: measured 500 per frame, most of them inside OpenCV (DIS's calc(), filters and remaps;
-// docs/design.md, "Speed of dense"). A guard against new ones.
+// Not zero: measured 598 per frame, most of them inside OpenCV (DIS's calc(), filters and
+// remaps; docs/design.md, "Speed of dense"; 542 before the edge snap, whose opening builds an
+// OpenCV filter engine per call). A guard against new ones.
 TEST(Allocations, DenseStaysUnderItsMeasuredAllocationsPerFrame) {
   const double per_frame = allocationsPerFrame(Method::kDense);
   std::printf("dense: %.1f allocations per frame\n", per_frame);
-  EXPECT_LE(per_frame, 600.0);
+  EXPECT_LE(per_frame, 650.0);
 }
 
 }  // namespace
