@@ -20,14 +20,14 @@ cv::Rect outlineRegion(const cv::Mat& mask, int radius) {
   return grown & cv::Rect(0, 0, mask.cols, mask.rows);
 }
 
-// An index reflected into [0, n) as BORDER_REFLECT does (the edge pixel repeated), for i and
-// i - n within n of the range.
-int reflected(int i, int n) { return i < 0 ? -i - 1 : i >= n ? 2 * n - i - 1 : i; }
+// An index reflected into [0, n) as BORDER_REFLECT does (the edge pixel repeated).
+int reflected(int i, int n) { return cv::borderInterpolate(i, n, cv::BORDER_REFLECT); }
 
 // The mean over each pixel's window of a CV_32F image, the window reflected at the borders (as
 // cv::ximgproc::guidedFilter's). Column sums run down the image and each row's window sums
-// across it, in floats, in loops the compiler vectorises (cv::boxFilter sums floats in
-// doubles); sums of integers under 2^24 are exact. The image must be at least a window wide
+// across it, in floats, in loops the compiler vectorises: cv::boxFilter sums floats in doubles,
+// and with it a whole snap took 0.46 ms against 0.26 (BM_EdgeSnap/0, one run, docs/design.md).
+// Sums of integers under 2^24 are exact. The image must be at least a window wide
 // and high.
 void windowMean(const cv::Mat& src, int radius, std::vector<float>* scratch, cv::Mat* mean) {
   const int w = src.cols, h = src.rows, side = 2 * radius + 1;
@@ -40,9 +40,9 @@ void windowMean(const cv::Mat& src, int radius, std::vector<float>* scratch, cv:
   }
   const float scale = 1.f / static_cast<float>(side * side);
   for (int y = 0;; ++y) {
-    for (int d = 0; d < radius; ++d) {
-      column[-1 - d] = column[d];
-      column[w + d] = column[w - 1 - d];
+    for (int d = 1; d <= radius; ++d) {
+      column[-d] = column[reflected(-d, w)];
+      column[w - 1 + d] = column[reflected(w - 1 + d, w)];
     }
     float* out = mean->ptr<float>(y);
     const float* first = column - radius;
