@@ -37,6 +37,7 @@ struct DenseAnalysis : Analysis {
   cv::Mat flow_map;                 // where the flow takes each pixel (flowMap)
   double scale = 1;                 // bgr = the frame scaled by this
   cv::Size input_size;
+  cv::Mat input_grey;  // at the input's size where that is larger: the edges the outline snaps to
   double prepare_ms = 0, flow_ms = 0;
 };
 
@@ -130,6 +131,11 @@ class DensePipeline : public Pipeline {
     a.grey = grey_buffers_.take(size, CV_8U);
     downscale(bgr, size, &halved_, &a.bgr);
     cv::cvtColor(a.bgr, a.grey, cv::COLOR_BGR2GRAY);
+    if (size != bgr.size() && params_.edge_snap > 0) {
+      cv::cvtColor(bgr, a.input_grey, cv::COLOR_BGR2GRAY);
+    } else {
+      a.input_grey.release();
+    }
     a.samples = gridSamples(a.grey, params_.flow_sample_step);
     a.prepare_ms = millisecondsSince(start);
     start = Clock::now();
@@ -189,7 +195,7 @@ class DensePipeline : public Pipeline {
 
     start = Clock::now();
     mask_ = cutEvidence(unary, a.bgr, params_.smoothness, &max_flow_, &diag.cut_nodes);
-    const cv::Mat mask = edge_snap_.snap(mask_, a.bgr, params_.edge_snap);
+    const cv::Mat mask = edge_snap_.snap(mask_, a.grey, params_.edge_snap, a.input_grey);
     diag.cut_ms = millisecondsSince(start);
     debug.put("residual", [&] {  // mid-grey: as large as the background's residual in this pair
       cv::Mat picture;
@@ -209,7 +215,10 @@ class DensePipeline : public Pipeline {
       unary.convertTo(picture, CV_8U, 25.0, 128.0);
       return picture;
     });
-    debug.put("edges", [&] { return drawEdgeSnap(a.bgr, mask_, mask); });
+    debug.put("edges", [&] {  // at the size of the mask returned
+      return drawEdgeSnap(a.input_grey.empty() ? a.grey : a.input_grey,
+                          upscaledMask(mask_, mask.size()), mask);
+    });
     return mask;
   }
 

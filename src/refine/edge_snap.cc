@@ -8,6 +8,9 @@ namespace {
 // A window's mean label strictly between these holds both labels: the outline crosses it.
 constexpr float kMixedLow = 1e-4f, kMixedHigh = 1.f - 1e-4f;
 
+// What the filter did to a pixel at the working scale (bits, so that taps can be or-ed).
+constexpr uchar kKept = 0, kChanged = 1, kThin = 2;
+
 // The part of the image whose pixels the filter can change: the mask's bounding box grown by
 // two window radii (a window mixing both labels, and the windows around its pixels), plus one
 // so that a window reflected at the region's edge still sees only background. Empty when the
@@ -18,6 +21,13 @@ cv::Rect outlineRegion(const cv::Mat& mask, int radius) {
   const int grow = 2 * radius + 1;
   const cv::Rect grown(box.x - grow, box.y - grow, box.width + 2 * grow, box.height + 2 * grow);
   return grown & cv::Rect(0, 0, mask.cols, mask.rows);
+}
+
+// The soft mask scaled up to `size` as upscaledMask does before its threshold.
+cv::Mat scaledUp(const cv::Mat& soft, cv::Size size) {
+  cv::Mat out;
+  cv::resize(soft, out, size, 0, 0, cv::INTER_LINEAR);
+  return out;
 }
 
 // An index reflected into [0, n) as BORDER_REFLECT does (the edge pixel repeated).
@@ -60,13 +70,17 @@ void windowMean(const cv::Mat& src, int radius, std::vector<float>* scratch, cv:
 
 }  // namespace
 
-cv::Mat EdgeSnap::snap(const cv::Mat& mask, const cv::Mat& bgr, int radius) {
-  CV_Assert(mask.type() == CV_8U && bgr.type() == CV_8UC3 && mask.size() == bgr.size());
+cv::Mat EdgeSnap::snap(const cv::Mat& mask, const cv::Mat& grey, int radius,
+                       const cv::Mat& output_grey) {
+  CV_Assert(mask.type() == CV_8U && grey.type() == CV_8U && mask.size() == grey.size());
+  CV_Assert(output_grey.empty() || (output_grey.type() == CV_8U &&
+                                    output_grey.cols >= mask.cols && output_grey.rows >= mask.rows));
   const cv::Rect region = radius > 0 ? outlineRegion(mask, radius) : cv::Rect();
   // A region narrower than a window is an image that small: its outline stays.
-  if (region.width <= 2 * radius || region.height <= 2 * radius) return mask;
-  cv::cvtColor(bgr(region), grey_, cv::COLOR_BGR2GRAY);
-  grey_.convertTo(guide_, CV_32F);
+  if (region.width <= 2 * radius || region.height <= 2 * radius) {
+    return output_grey.empty() ? mask : scaledUp(mask, output_grey.size());
+  }
+  grey(region).convertTo(guide_, CV_32F);
   mask(region).convertTo(label_, CV_32F, 1.0 / 255);
   cv::multiply(guide_, guide_, square_);
   cv::multiply(guide_, label_, masked_guide_);
@@ -79,7 +93,7 @@ cv::Mat EdgeSnap::snap(const cv::Mat& mask, const cv::Mat& bgr, int radius) {
   slope_.create(guide_.size(), CV_32F);
   offset_.create(guide_.size(), CV_32F);
   for (int y = 0; y < guide_.rows; ++y) {
-    const float* grey = mean_guide_.ptr<float>(y);
+    const float* grey_mean = mean_guide_.ptr<float>(y);
     const float* square = mean_square_.ptr<float>(y);
     const float* label = mean_label_.ptr<float>(y);
     const float* masked = mean_masked_guide_.ptr<float>(y);
@@ -87,9 +101,9 @@ cv::Mat EdgeSnap::snap(const cv::Mat& mask, const cv::Mat& bgr, int radius) {
     float* offset = offset_.ptr<float>(y);
     for (int x = 0; x < guide_.cols; ++x) {
       const bool mixed = label[x] > kMixedLow && label[x] < kMixedHigh;
-      const float variance = square[x] - grey[x] * grey[x];
-      slope[x] = mixed ? (masked[x] - grey[x] * label[x]) / (variance + kRegulariser) : 0.f;
-      offset[x] = label[x] - slope[x] * grey[x];
+      const float variance = square[x] - grey_mean[x] * grey_mean[x];
+      slope[x] = mixed ? (masked[x] - grey_mean[x] * label[x]) / (variance + kRegulariser) : 0.f;
+      offset[x] = label[x] - slope[x] * grey_mean[x];
     }
   }
   windowMean(slope_, radius, &scratch_, &mean_slope_);
@@ -100,18 +114,87 @@ cv::Mat EdgeSnap::snap(const cv::Mat& mask, const cv::Mat& bgr, int radius) {
   cv::morphologyEx(mask(region), opened_, cv::MORPH_OPEN,
                    cv::getStructuringElement(cv::MORPH_CROSS, {3, 3}));
   cv::Mat snapped = mask.clone();
+  state_.create(guide_.size(), CV_8U);
   for (int y = 0; y < guide_.rows; ++y) {
-    const float* grey = guide_.ptr<float>(y);
+    const float* brightness = guide_.ptr<float>(y);
     const float* slope = mean_slope_.ptr<float>(y);
     const float* offset = mean_offset_.ptr<float>(y);
     const uchar* opened = opened_.ptr<uchar>(y);
     uchar* out = snapped.ptr<uchar>(y + region.y) + region.x;
+    uchar* state = state_.ptr<uchar>(y);
     for (int x = 0; x < guide_.cols; ++x) {
       const bool thin = out[x] != opened[x];
-      out[x] = thin ? 255 : cv::saturate_cast<uchar>(255.f * (slope[x] * grey[x] + offset[x]));
+      const uchar value =
+          thin ? 255 : cv::saturate_cast<uchar>(255.f * (slope[x] * brightness[x] + offset[x]));
+      state[x] = thin ? kThin : value != out[x] ? kChanged : kKept;
+      out[x] = value;
     }
   }
-  return snapped;
+  if (output_grey.empty() || output_grey.size() == mask.size()) return snapped;
+  return onFinerEdges(snapped, region, output_grey);
+}
+
+cv::Mat EdgeSnap::onFinerEdges(const cv::Mat& snapped, cv::Rect region, const cv::Mat& fine) {
+  cv::Mat out = scaledUp(snapped, fine.size());
+  // cv::resize's bilinear taps: output pixel x reads the region's columns x0 and x0 + 1, the
+  // latter with weight (x + 0.5) * sx - 0.5 - region.x - x0, and likewise for rows. Pixels whose
+  // taps leave the region keep `out` (the filter changed nothing near the region's edges).
+  const double sx = static_cast<double>(snapped.cols) / fine.cols;
+  const double sy = static_cast<double>(snapped.rows) / fine.rows;
+  auto tap = [](int i, double scale, int origin) { return (i + 0.5) * scale - 0.5 - origin; };
+  // first_[x0]: the first output column whose left tap is x0 or beyond.
+  first_.assign(static_cast<size_t>(region.width), fine.cols);
+  for (int x = fine.cols - 1; x >= 0; --x) {
+    const int x0 = cvFloor(tap(x, sx, region.x));
+    if (x0 >= 0 && x0 < region.width) first_[static_cast<size_t>(x0)] = x;
+  }
+  for (int x0 = region.width - 2; x0 >= 0; --x0) {
+    first_[static_cast<size_t>(x0)] =
+        std::min(first_[static_cast<size_t>(x0)], first_[static_cast<size_t>(x0 + 1)]);
+  }
+  changed_rows_.assign(static_cast<size_t>(region.height), false);
+  for (int y = 0; y < region.height; ++y) {
+    const uchar* state = state_.ptr<uchar>(y);
+    changed_rows_[static_cast<size_t>(y)] =
+        std::any_of(state, state + region.width, [](uchar s) { return s == kChanged; });
+  }
+  for (int y = 0; y < fine.rows; ++y) {
+    const double at = tap(y, sy, region.y);
+    const int y0 = cvFloor(at);
+    if (y0 < 0 || y0 + 1 >= region.height ||
+        !(changed_rows_[static_cast<size_t>(y0)] || changed_rows_[static_cast<size_t>(y0 + 1)])) {
+      continue;
+    }
+    const float wy = static_cast<float>(at - y0);
+    const uchar* state0 = state_.ptr<uchar>(y0);
+    const uchar* state1 = state_.ptr<uchar>(y0 + 1);
+    const float* slope0 = mean_slope_.ptr<float>(y0);
+    const float* slope1 = mean_slope_.ptr<float>(y0 + 1);
+    const float* offset0 = mean_offset_.ptr<float>(y0);
+    const float* offset1 = mean_offset_.ptr<float>(y0 + 1);
+    const uchar* brightness = fine.ptr<uchar>(y);
+    uchar* row = out.ptr<uchar>(y);
+    for (int x0 = 0; x0 + 1 < region.width; ++x0) {
+      // Only where the filter changed a tap: elsewhere the scaled-up working result is the
+      // filter's own.
+      if (!((state0[x0] | state0[x0 + 1] | state1[x0] | state1[x0 + 1]) & kChanged)) continue;
+      auto bilinear = [&](const float* top, const float* bottom, float wx) {
+        const float upper = top[x0] + wx * (top[x0 + 1] - top[x0]);
+        const float lower = bottom[x0] + wx * (bottom[x0 + 1] - bottom[x0]);
+        return upper + wy * (lower - upper);
+      };
+      const int end = first_[static_cast<size_t>(x0 + 1)];
+      for (int x = first_[static_cast<size_t>(x0)]; x < end; ++x) {
+        const auto wx = static_cast<float>(tap(x, sx, region.x) - x0);
+        const uchar* nearest_row = wy < 0.5f ? state0 : state1;
+        if (nearest_row[wx < 0.5f ? x0 : x0 + 1] == kThin) continue;  // the thin part's own
+        const float slope = bilinear(slope0, slope1, wx);
+        const float offset = bilinear(offset0, offset1, wx);
+        row[x] = cv::saturate_cast<uchar>(255.f * (slope * brightness[x] + offset));
+      }
+    }
+  }
+  return out;
 }
 
 }  // namespace movseg

@@ -20,21 +20,33 @@ class EdgeSnap {
   // docs/design.md, "Edges").
   static constexpr float kRegulariser = 100.f;
 
-  // `mask` CV_8U 0/255, `bgr` 8-bit BGR of the same size; `radius` (pixels) is the filter's
-  // window radius, 0 returns `mask`. Returns the snapped mask, CV_8U with 127 on the outline:
-  // the filter's output times 255, whose grey levels place the outline between pixels when the
-  // mask is scaled up (upscaledMask). Elsewhere than on those thin parts, the same as
-  // cv::ximgproc::guidedFilter of the mask with the grey frame as guide, at a fraction of its
-  // cost (tests/refine, bench BM_EdgeSnap).
-  cv::Mat snap(const cv::Mat& mask, const cv::Mat& bgr, int radius);
+  // `mask` CV_8U 0/255, `grey` the frame's 8-bit brightness at the same size; `radius`
+  // (pixels) is the filter's window radius, 0 returns `mask`. Returns the snapped mask, CV_8U
+  // with 127 on the outline: the filter's output times 255, whose grey levels place the outline
+  // between pixels when the mask is scaled up (upscaledMask). Elsewhere than on those thin
+  // parts, the same as cv::ximgproc::guidedFilter of the mask with `grey` as guide, at a
+  // fraction of its cost (tests/refine, bench BM_EdgeSnap).
+  //
+  // `output_grey`, when given, is the same frame's brightness at a larger size (the input's,
+  // where the mask was made at a working scale): the result is then at that size, the filter's
+  // slope and offset scaled up and applied to that image where the filter changed the mask
+  // (He and Sun's "Fast guided filter", 2015), so that the outline follows its finer edges;
+  // elsewhere the result scaled up.
+  cv::Mat snap(const cv::Mat& mask, const cv::Mat& grey, int radius,
+               const cv::Mat& output_grey = cv::Mat());
 
  private:
+  // The working result `snapped` with the outline placed on `fine`'s edges (above).
+  cv::Mat onFinerEdges(const cv::Mat& snapped, cv::Rect region, const cv::Mat& fine);
+
   // Kept between calls (frames of one size allocate them once), all over the region that holds
   // the outline.
-  cv::Mat grey_, guide_, square_, label_, masked_guide_;
+  cv::Mat guide_, square_, label_, masked_guide_;
   cv::Mat mean_guide_, mean_square_, mean_label_, mean_masked_guide_;
-  cv::Mat slope_, offset_, mean_slope_, mean_offset_, opened_;
+  cv::Mat slope_, offset_, mean_slope_, mean_offset_, opened_, state_;
   std::vector<float> scratch_;
+  std::vector<int> first_;  // onFinerEdges' output columns by their left tap
+  std::vector<bool> changed_rows_;
 };
 
 }  // namespace movseg
