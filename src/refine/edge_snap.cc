@@ -73,8 +73,9 @@ void windowMean(const cv::Mat& src, int radius, std::vector<float>* scratch, cv:
 cv::Mat EdgeSnap::snap(const cv::Mat& mask, const cv::Mat& grey, int radius,
                        const cv::Mat& output_grey) {
   CV_Assert(mask.type() == CV_8U && grey.type() == CV_8U && mask.size() == grey.size());
-  CV_Assert(output_grey.empty() || (output_grey.type() == CV_8U &&
-                                    output_grey.cols >= mask.cols && output_grey.rows >= mask.rows));
+  CV_Assert(output_grey.empty() ||
+            (output_grey.type() == CV_8U && output_grey.cols >= mask.cols &&
+             output_grey.rows >= mask.rows));
   const cv::Rect region = radius > 0 ? outlineRegion(mask, radius) : cv::Rect();
   // A region narrower than a window is an image that small: its outline stays.
   if (region.width <= 2 * radius || region.height <= 2 * radius) {
@@ -172,6 +173,7 @@ cv::Mat EdgeSnap::onFinerEdges(const cv::Mat& snapped, cv::Rect region, const cv
     const float* slope1 = mean_slope_.ptr<float>(y0 + 1);
     const float* offset0 = mean_offset_.ptr<float>(y0);
     const float* offset1 = mean_offset_.ptr<float>(y0 + 1);
+    const uchar* nearest_row = wy < 0.5f ? state0 : state1;
     const uchar* brightness = fine.ptr<uchar>(y);
     uchar* row = out.ptr<uchar>(y);
     for (int x0 = 0; x0 + 1 < region.width; ++x0) {
@@ -186,7 +188,6 @@ cv::Mat EdgeSnap::onFinerEdges(const cv::Mat& snapped, cv::Rect region, const cv
       const int end = first_[static_cast<size_t>(x0 + 1)];
       for (int x = first_[static_cast<size_t>(x0)]; x < end; ++x) {
         const auto wx = static_cast<float>(tap(x, sx, region.x) - x0);
-        const uchar* nearest_row = wy < 0.5f ? state0 : state1;
         if (nearest_row[wx < 0.5f ? x0 : x0 + 1] == kThin) continue;  // the thin part's own
         const float slope = bilinear(slope0, slope1, wx);
         const float offset = bilinear(offset0, offset1, wx);

@@ -31,7 +31,7 @@ class EdgeSnap {
   // where the mask was made at a working scale): the result is then at that size, the filter's
   // slope and offset scaled up and applied to that image where the filter changed the mask
   // (He and Sun's "Fast guided filter", 2015), so that the outline follows its finer edges;
-  // elsewhere the result scaled up.
+  // elsewhere, and on the thin parts, the result scaled up.
   cv::Mat snap(const cv::Mat& mask, const cv::Mat& grey, int radius,
                const cv::Mat& output_grey = cv::Mat());
 

@@ -2,8 +2,6 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include <opencv2/imgproc.hpp>
-
 namespace movseg {
 
 cv::Mat drawEdgeSnap(const cv::Mat& grey, const cv::Mat& cut, const cv::Mat& snapped) {
