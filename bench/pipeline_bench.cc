@@ -143,7 +143,8 @@ void BM_GraphCut(benchmark::State& state) {
 // `dense`'s last step (src/refine/edge_snap.h) against the library's guided filter it computes
 // (whole image, then the half level): argument 0 = EdgeSnap, 1 = cv::ximgproc::guidedFilter,
 // 2 = EdgeSnap with its result at 8/3 the size (a DAVIS frame's 854 px against the working 320),
-// placed by the edges of the frame scaled up. The mask is the synthetic frame's true one moved
+// placed by the edges of the frame scaled up (the scale-up of the mask, which upscaledMask did
+// before, included). The mask is the synthetic frame's true one moved
 // a pixel, as the cut's blocks leave it.
 void BM_EdgeSnap(benchmark::State& state) {
   SynthOptions options;
