@@ -128,12 +128,18 @@ PreparedFrame prepareFrame(const cv::Mat& bgr, const Params& params) {
   return f;
 }
 
+cv::Mat scaledMask(const cv::Mat& mask, cv::Size size) {
+  cv::Mat out;
+  cv::resize(mask, out, size, 0, 0, cv::INTER_LINEAR);
+  return out;
+}
+
 cv::Mat upscaledMask(const cv::Mat& mask, cv::Size size) {
   cv::Mat out;
   if (mask.size() == size) {
     cv::threshold(mask, out, 127, 255, cv::THRESH_BINARY);
   } else {  // one image, thresholded in place
-    cv::resize(mask, out, size, 0, 0, cv::INTER_LINEAR);
+    out = scaledMask(mask, size);
     cv::threshold(out, out, 127, 255, cv::THRESH_BINARY);
   }
   return out;

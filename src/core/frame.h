@@ -55,9 +55,13 @@ struct PreparedFrame {
 
 PreparedFrame prepareFrame(const cv::Mat& bgr, const Params& params);
 
-// A mask (CV_8U, above 127 moving) resized to `size` by bilinear interpolation and thresholded
-// to 0/255, so that a mask computed at a working scale has smooth rather than blocky boundaries
-// at full resolution; grey levels along its outline (EdgeSnap's) place it between pixels.
+// A soft mask (CV_8U, above 127 moving) resized to `size` by bilinear interpolation, not yet
+// thresholded: what upscaledMask thresholds, and what EdgeSnap refines at the input's size.
+cv::Mat scaledMask(const cv::Mat& mask, cv::Size size);
+
+// scaledMask thresholded to 0/255, so that a mask computed at a working scale has smooth rather
+// than blocky boundaries at full resolution; grey levels along its outline (EdgeSnap's) place
+// it between pixels.
 cv::Mat upscaledMask(const cv::Mat& mask, cv::Size size);
 
 }  // namespace movseg

@@ -2,6 +2,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "core/frame.h"
+
 namespace movseg {
 namespace {
 
@@ -21,13 +23,6 @@ cv::Rect outlineRegion(const cv::Mat& mask, int radius) {
   const int grow = 2 * radius + 1;
   const cv::Rect grown(box.x - grow, box.y - grow, box.width + 2 * grow, box.height + 2 * grow);
   return grown & cv::Rect(0, 0, mask.cols, mask.rows);
-}
-
-// The soft mask scaled up to `size` as upscaledMask does before its threshold.
-cv::Mat scaledUp(const cv::Mat& soft, cv::Size size) {
-  cv::Mat out;
-  cv::resize(soft, out, size, 0, 0, cv::INTER_LINEAR);
-  return out;
 }
 
 // An index reflected into [0, n) as BORDER_REFLECT does (the edge pixel repeated).
@@ -79,7 +74,7 @@ cv::Mat EdgeSnap::snap(const cv::Mat& mask, const cv::Mat& grey, int radius,
   const cv::Rect region = radius > 0 ? outlineRegion(mask, radius) : cv::Rect();
   // A region narrower than a window is an image that small: its outline stays.
   if (region.width <= 2 * radius || region.height <= 2 * radius) {
-    return output_grey.empty() ? mask : scaledUp(mask, output_grey.size());
+    return output_grey.empty() ? mask : scaledMask(mask, output_grey.size());
   }
   grey(region).convertTo(guide_, CV_32F);
   mask(region).convertTo(label_, CV_32F, 1.0 / 255);
@@ -136,7 +131,7 @@ cv::Mat EdgeSnap::snap(const cv::Mat& mask, const cv::Mat& grey, int radius,
 }
 
 cv::Mat EdgeSnap::onFinerEdges(const cv::Mat& snapped, cv::Rect region, const cv::Mat& fine) {
-  cv::Mat out = scaledUp(snapped, fine.size());
+  cv::Mat out = scaledMask(snapped, fine.size());
   // cv::resize's bilinear taps: output pixel x reads the region's columns x0 and x0 + 1, the
   // latter with weight (x + 0.5) * sx - 0.5 - region.x - x0, and likewise for rows. Pixels whose
   // taps leave the region keep `out` (the filter changed nothing near the region's edges).
