@@ -144,8 +144,8 @@ void BM_GraphCut(benchmark::State& state) {
 // (whole image, then the half level): argument 0 = EdgeSnap, 1 = cv::ximgproc::guidedFilter,
 // 2 = EdgeSnap with its result at 8/3 the size (a DAVIS frame's 854 px against the working 320),
 // placed by the edges of the frame scaled up (the scale-up of the mask, which upscaledMask did
-// before, included). The mask is the synthetic frame's true one moved
-// a pixel, as the cut's blocks leave it.
+// before, included). The mask is the synthetic frame's true one moved a pixel, as the cut's
+// blocks leave it.
 void BM_EdgeSnap(benchmark::State& state) {
   SynthOptions options;
   options.frames = 12;

@@ -55,7 +55,8 @@ class Pipeline {
 
   // Phase 2: the mask of the analysed frame (CV_8U, above 127 moving, at any scale: the frame
   // loop scales it to the frame and makes it 0 / 255); fills result->features, the diagnostics
-  // of the pipeline's stages, and `debug`. A first-frame analysis makes it forget what it remembers of earlier frames.
+  // of the pipeline's stages, and `debug`. A first-frame analysis makes it forget what it
+  // remembers of earlier frames.
   virtual cv::Mat segment(const Analysis& analysis, const DebugSink& debug, Result* result) = 0;
 
   // Forgets phase 1's stream; phase 2 forgets at the next first-frame analysis. It runs with
