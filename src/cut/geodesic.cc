@@ -4,22 +4,31 @@
 #include <cmath>
 #include <limits>
 
+#include <opencv2/core/hal/hal.hpp>
+
 namespace movseg {
 namespace {
 
-// Step costs between each pixel and its neighbour at (dx, dy); the last column/row that has no
-// such neighbour is left at 0 and never read.
-cv::Mat stepCosts(const cv::Mat& colour, int dx, int dy, double gamma, double length) {
-  cv::Mat cost(colour.size(), CV_32F, cv::Scalar(0));
+// Step costs between each pixel and its neighbour at (dx, dy), from the colour's three planes;
+// the last column/row that has no such neighbour is left at 0 and never read. On planes the
+// row loop vectorises, and OpenCV's vectorised sqrt takes a row's roots (the same values as
+// std::sqrt per pixel, in a third of the instructions of the per-pixel loop on Vec3f).
+cv::Mat stepCosts(const cv::Mat (&planes)[3], int dx, int dy, double gamma, double length) {
+  const cv::Size size = planes[0].size();
+  cv::Mat cost(size, CV_32F, cv::Scalar(0));
   const float g2 = static_cast<float>(gamma * gamma), l2 = static_cast<float>(length * length);
-  for (int y = 0; y + dy < colour.rows; ++y) {
-    const auto* row = colour.ptr<cv::Vec3f>(y);
-    const auto* next = colour.ptr<cv::Vec3f>(y + dy);
+  const int first = std::max(0, -dx), end = std::min(size.width, size.width - dx);
+  for (int y = 0; y + dy < size.height; ++y) {
+    const float *b = planes[0].ptr<float>(y), *g = planes[1].ptr<float>(y),
+                *r = planes[2].ptr<float>(y);
+    const float *nb = planes[0].ptr<float>(y + dy), *ng = planes[1].ptr<float>(y + dy),
+                *nr = planes[2].ptr<float>(y + dy);
     float* out = cost.ptr<float>(y);
-    for (int x = std::max(0, -dx); x < colour.cols && x + dx < colour.cols; ++x) {
-      const cv::Vec3f d = row[x] - next[x + dx];
-      out[x] = std::sqrt(l2 + g2 * d.dot(d));
+    for (int x = first; x < end; ++x) {
+      const float db = b[x] - nb[x + dx], dg = g[x] - ng[x + dx], dr = r[x] - nr[x + dx];
+      out[x] = l2 + g2 * (db * db + dg * dg + dr * dr);
     }
+    if (end > first) cv::hal::sqrt32f(out + first, out + first, end - first);
   }
   return cost;
 }
@@ -27,10 +36,13 @@ cv::Mat stepCosts(const cv::Mat& colour, int dx, int dy, double gamma, double le
 }  // namespace
 
 GeodesicGrid::GeodesicGrid(const cv::Mat& colour, double gamma) : size_(colour.size()) {
-  right_ = stepCosts(colour, 1, 0, gamma, 1.0);
-  down_left_ = stepCosts(colour, -1, 1, gamma, std::sqrt(2.0));
-  down_ = stepCosts(colour, 0, 1, gamma, 1.0);
-  down_right_ = stepCosts(colour, 1, 1, gamma, std::sqrt(2.0));
+  CV_Assert(colour.type() == CV_32FC3);
+  cv::Mat planes[3];
+  cv::split(colour, planes);
+  right_ = stepCosts(planes, 1, 0, gamma, 1.0);
+  down_left_ = stepCosts(planes, -1, 1, gamma, std::sqrt(2.0));
+  down_ = stepCosts(planes, 0, 1, gamma, 1.0);
+  down_right_ = stepCosts(planes, 1, 1, gamma, std::sqrt(2.0));
 }
 
 cv::Mat GeodesicGrid::distanceFrom(const std::vector<cv::Point>& seeds, int max_sweeps) const {
