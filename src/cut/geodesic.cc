@@ -59,52 +59,65 @@ cv::Mat GeodesicGrid::distanceFrom(const std::vector<cv::Point>& seeds, int max_
 
 namespace {
 
-// d = min(d, candidate), noting a decrease; branch-free so the row loops vectorise.
-inline void relax(float& d, float candidate, bool* changed) {
-  *changed |= candidate < d;
-  d = std::min(d, candidate);
+// d[x] = min(d[x], from[x + df] + step[x + ds]) for x in [first, end); whether any d fell.
+// The flag is a local and there is no branch, so that GCC vectorises the loop.
+bool relaxRow(float* d, const float* from, int df, const float* step, int ds, int first,
+              int end) {
+  int fell = 0;
+  for (int x = first; x < end; ++x) {
+    const float candidate = from[x + df] + step[x + ds];
+    fell |= candidate < d[x];
+    d[x] = std::min(d[x], candidate);
+  }
+  return fell != 0;
+}
+
+// The same from the row's own neighbour on the side already visited (x - dir), one pixel
+// after the other: each pixel's result feeds the next.
+bool relaxAlongRow(float* d, const float* right, int dir, int w) {
+  int fell = 0;
+  const int first = dir > 0 ? 1 : w - 2, end = dir > 0 ? w : -1;
+  for (int x = first; x != end; x += dir) {
+    // The step between x and x - dir is stored at the left one of the two.
+    const float candidate = d[x - dir] + right[dir > 0 ? x - 1 : x];
+    fell |= candidate < d[x];
+    d[x] = std::min(d[x], candidate);
+  }
+  return fell != 0;
 }
 
 }  // namespace
 
-// Relaxes each pixel from its already visited neighbours: left, up-left, up, up-right.
+// Relaxes each pixel from its already visited neighbours: up, up-left, up-right, left.
 bool GeodesicGrid::forwardPass(cv::Mat& distance) const {
   const int w = size_.width;
   bool changed = false;
   for (int y = 0; y < size_.height; ++y) {
     float* d = distance.ptr<float>(y);
-    const float* right = right_.ptr<float>(y);
     if (y > 0) {
       const float* up = distance.ptr<float>(y - 1);
-      const float* down = down_.ptr<float>(y - 1);
-      const float* down_left = down_left_.ptr<float>(y - 1);
-      const float* down_right = down_right_.ptr<float>(y - 1);
-      for (int x = 0; x < w; ++x) relax(d[x], up[x] + down[x], &changed);
-      for (int x = 1; x < w; ++x) relax(d[x], up[x - 1] + down_right[x - 1], &changed);
-      for (int x = 0; x + 1 < w; ++x) relax(d[x], up[x + 1] + down_left[x + 1], &changed);
+      changed |= relaxRow(d, up, 0, down_.ptr<float>(y - 1), 0, 0, w);
+      changed |= relaxRow(d, up, -1, down_right_.ptr<float>(y - 1), -1, 1, w);
+      changed |= relaxRow(d, up, 1, down_left_.ptr<float>(y - 1), 1, 0, w - 1);
     }
-    for (int x = 1; x < w; ++x) relax(d[x], d[x - 1] + right[x - 1], &changed);
+    changed |= relaxAlongRow(d, right_.ptr<float>(y), 1, w);
   }
   return changed;
 }
 
-// Relaxes each pixel from right, down-right, down, down-left.
+// Relaxes each pixel from down, down-right, down-left, right.
 bool GeodesicGrid::backwardPass(cv::Mat& distance) const {
   const int w = size_.width;
   bool changed = false;
   for (int y = size_.height - 1; y >= 0; --y) {
     float* d = distance.ptr<float>(y);
-    const float* right = right_.ptr<float>(y);
     if (y + 1 < size_.height) {
       const float* below = distance.ptr<float>(y + 1);
-      const float* down = down_.ptr<float>(y);
-      const float* down_left = down_left_.ptr<float>(y);
-      const float* down_right = down_right_.ptr<float>(y);
-      for (int x = 0; x < w; ++x) relax(d[x], below[x] + down[x], &changed);
-      for (int x = 0; x + 1 < w; ++x) relax(d[x], below[x + 1] + down_right[x], &changed);
-      for (int x = 1; x < w; ++x) relax(d[x], below[x - 1] + down_left[x], &changed);
+      changed |= relaxRow(d, below, 0, down_.ptr<float>(y), 0, 0, w);
+      changed |= relaxRow(d, below, 1, down_right_.ptr<float>(y), 0, 0, w - 1);
+      changed |= relaxRow(d, below, -1, down_left_.ptr<float>(y), 0, 1, w);
     }
-    for (int x = w - 2; x >= 0; --x) relax(d[x], d[x + 1] + right[x], &changed);
+    changed |= relaxAlongRow(d, right_.ptr<float>(y), -1, w);
   }
   return changed;
 }
