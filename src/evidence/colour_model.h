@@ -19,7 +19,9 @@ class ColourModel {
   explicit ColourModel(const Params& params);
 
   // with_colour = evidence + colour_weight * clip(log(p_fg(c) / p_bg(c))) at every pixel of
-  // `bgr` (8-bit BGR, evidence's size, CV_32F); evidence alone before the first update.
+  // `bgr` (8-bit BGR, evidence's size, CV_32F), the log ratio clipped to [max(-colour_clip,
+  // log(1/4)), colour_clip]: a mover not seen yet may show any colour of the background;
+  // evidence alone before the first update.
   void addEvidence(const cv::Mat& bgr, const cv::Mat& evidence, cv::Mat* with_colour) const;
 
   // Learns the foreground from the pixels of `bgr` whose `evidence` (CV_32F, memory included)

@@ -1,5 +1,7 @@
 #include "evidence/colour_model.h"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 namespace movseg {
@@ -46,7 +48,27 @@ TEST(ColourModel, LearnsTheColoursOfConfidentPixelsOnly) {
   const auto most = static_cast<float>(params.colour_weight * params.colour_clip);
   EXPECT_FLOAT_EQ(colour[0], most);
   EXPECT_FLOAT_EQ(colour[1], 0.f);  // seen by neither histogram
-  EXPECT_FLOAT_EQ(colour[2], -most);
+  // Against a mover at most log 4: the next mover may show the background's colours.
+  EXPECT_FLOAT_EQ(colour[2], static_cast<float>(params.colour_weight) * std::log(0.25f));
+}
+
+// Blue is the background's only colour and no mover has shown it. However long that is seen,
+// a new mover in blue pays at most colour_weight * log 4 (1.73) for it, not the full clip's
+// 2.5 (colour_clip 2 x 1.25); a narrower colour_clip still bounds both sides.
+TEST(ColourModel, AMoverInTheBackgroundsColoursIsNotRuledOutByThem) {
+  const Params params;
+  ColourModel model(params);
+  for (int frame = 0; frame < 30; ++frame) {
+    model.update(stripes(), stripeEvidence(2.5f, -2.5f, -2.5f), stripeEvidence(2.5f, -2.5f, -2.5f));
+  }
+  const float blue = colourEvidence(model, stripes())[2];
+  EXPECT_NEAR(blue, -1.25f * std::log(4.f), 1e-5);
+  // A narrower clip is kept.
+  Params narrow;
+  narrow.colour_clip = 0.5;
+  ColourModel clipped(narrow);
+  clipped.update(stripes(), stripeEvidence(2.5f, -2.5f, -2.5f), stripeEvidence(2.5f, -2.5f, -2.5f));
+  EXPECT_FLOAT_EQ(colourEvidence(clipped, stripes())[2], -0.5f * 1.25f);
 }
 
 // Red was taken for a mover; now every pair says it is static as strongly as a pair can (the
