@@ -12,7 +12,7 @@ namespace {
 // Step costs between each pixel and its neighbour at (dx, dy), from the colour's three planes;
 // the last column/row that has no such neighbour is left at 0 and never read. On planes the
 // row loop vectorises, and OpenCV's vectorised sqrt takes a row's roots (the same values as
-// std::sqrt per pixel, in a third of the instructions of the per-pixel loop on Vec3f).
+// std::sqrt per pixel, in under half the instructions of the per-pixel loop on Vec3f).
 cv::Mat stepCosts(const cv::Mat (&planes)[3], int dx, int dy, double gamma, double length) {
   const cv::Size size = planes[0].size();
   cv::Mat cost(size, CV_32F, cv::Scalar(0));

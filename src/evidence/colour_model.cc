@@ -18,7 +18,7 @@ constexpr float kPriorPixels = 20.f;
 // from the movers seen so far, does not say how unlikely a colour is for the next one. So a
 // colour counts against the foreground by at most this share, the foreground being at least a
 // quarter as likely to show it as the background (log ratio >= log(1/4), where colour_clip
-// allows -2). Measured against -2 (docs/design.md, "A floor under colour's say against"):
+// allows -2). Against -2 (docs/design.md, "A floor under colour's say against a mover"):
 // DAVIS J 0.5954 -> 0.5976, our 57 0.841 -> 0.843, independent 48 0.798 -> 0.799, dolly
 // 0.123 -> 0.142; a half (log ratio >= -0.69) lost DAVIS 0.008.
 constexpr float kUnseenMoverShare = 0.25f;

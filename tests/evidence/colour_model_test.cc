@@ -57,18 +57,16 @@ TEST(ColourModel, LearnsTheColoursOfConfidentPixelsOnly) {
 // 2.5 (colour_clip 2 x 1.25); a narrower colour_clip still bounds both sides.
 TEST(ColourModel, AMoverInTheBackgroundsColoursIsNotRuledOutByThem) {
   const Params params;
+  const cv::Mat red_moves = stripeEvidence(2.5f, -2.5f, -2.5f);
   ColourModel model(params);
-  for (int frame = 0; frame < 30; ++frame) {
-    model.update(stripes(), stripeEvidence(2.5f, -2.5f, -2.5f), stripeEvidence(2.5f, -2.5f, -2.5f));
-  }
-  const float blue = colourEvidence(model, stripes())[2];
-  EXPECT_NEAR(blue, -1.25f * std::log(4.f), 1e-5);
+  for (int frame = 0; frame < 30; ++frame) model.update(stripes(), red_moves, red_moves);
+  const auto weight = static_cast<float>(params.colour_weight);
+  EXPECT_NEAR(colourEvidence(model, stripes())[2], -weight * std::log(4.f), 1e-5);
   // A narrower clip is kept.
   Params narrow;
   narrow.colour_clip = 0.5;
-  ColourModel clipped(narrow);
-  clipped.update(stripes(), stripeEvidence(2.5f, -2.5f, -2.5f), stripeEvidence(2.5f, -2.5f, -2.5f));
-  EXPECT_FLOAT_EQ(colourEvidence(clipped, stripes())[2], -0.5f * 1.25f);
+  const ColourModel clipped = learntFrom(narrow, red_moves);
+  EXPECT_FLOAT_EQ(colourEvidence(clipped, stripes())[2], -0.5f * weight);
 }
 
 // Red was taken for a mover; now every pair says it is static as strongly as a pair can (the
