@@ -75,6 +75,7 @@ bool relaxRow(float* d, const float* from, int df, const float* step, int ds, in
 // The same from the row's own neighbour on the side already visited (x - dir), one pixel
 // after the other: each pixel's result feeds the next.
 bool relaxAlongRow(float* d, const float* right, int dir, int w) {
+  if (w < 2) return false;
   int fell = 0;
   const int first = dir > 0 ? 1 : w - 2, end = dir > 0 ? w : -1;
   for (int x = first; x != end; x += dir) {
