@@ -90,6 +90,21 @@ TEST(Geodesic, EqualsDijkstraOnTexture) {
   EXPECT_LT(worstRelativeError(grid.distanceFrom(seeds, 1)), 0.5);
 }
 
+// A column and a row one pixel wide: the sweeps' loops along a row and across rows meet their
+// ends at once, and the distances are Dijkstra's.
+TEST(Geodesic, OnePixelWideImagesEqualDijkstra) {
+  for (const cv::Size size : {cv::Size(1, 40), cv::Size(40, 1), cv::Size(1, 1)}) {
+    const cv::Mat colour = toColour(test::texture(size, 3));
+    const std::vector<cv::Point> seeds{{0, 0}};
+    const cv::Mat expected = dijkstra(colour, 10, seeds);
+    const cv::Mat got = GeodesicGrid(colour, 10).distanceFrom(seeds, 1);
+    for (int i = 0; i < static_cast<int>(got.total()); ++i) {
+      EXPECT_NEAR(got.at<float>(i), expected.at<double>(i), 1e-3 * (1 + expected.at<double>(i)))
+          << size << " at " << i;
+    }
+  }
+}
+
 TEST(Geodesic, NoSeedsMeansInfinitelyFar) {
   const cv::Mat colour = toColour(cv::Mat(4, 4, CV_8UC3, cv::Scalar(0)));
   const cv::Mat d = GeodesicGrid(colour, 1).distanceFrom({}, 1);
