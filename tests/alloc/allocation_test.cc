@@ -10,6 +10,7 @@
 #include "alloc/counting_malloc.h"
 #include "cut/grid_energy.h"
 #include "cut/grid_max_flow.h"
+#include "flow/dense_flow.h"
 #include "movseg/segmenter.h"
 #include "synth/synth.h"
 
@@ -57,6 +58,26 @@ TEST(Allocations, TheGridMaxFlowKeepsItsNodesBetweenCalls) {
   EXPECT_EQ(cv::countNonZero(first != second), 0);
 }
 
+// The dense flow keeps its frames' pyramids and its buffers between calls: at a fixed size, a
+// frame costs no allocation of its own once two have passed.
+TEST(Allocations, DenseFlowKeepsItsBuffersBetweenFrames) {
+  SynthOptions clip;
+  clip.frames = 8;
+  const SynthSequence sequence(clip);
+  std::vector<cv::Mat> frames;
+  for (int t = 0; t < sequence.size(); ++t) {
+    frames.emplace_back();
+    cv::cvtColor(sequence.frame(t).frame, frames.back(), cv::COLOR_BGR2GRAY);
+  }
+  DenseFlow flow(Params().flow_finest_scale);
+  cv::Mat flows[2];  // two in flight, as the pipeline keeps them
+  for (size_t t = 0; t < 4; ++t) flow.next(frames[t], &flows[t % 2]);
+  test::CountAllocations counter;
+  for (size_t t = 4; t < frames.size(); ++t) flow.next(frames[t], &flows[t % 2]);
+  std::printf("dense flow: %.1f allocations per frame\n", counter.count() / 4.0);
+  EXPECT_EQ(counter.count(), 0);
+}
+
 // Allocations per frame of `method` on a 320x240 clip, after the first frames have sized every
 // buffer.
 double allocationsPerFrame(Method method) {
@@ -75,9 +96,10 @@ double allocationsPerFrame(Method method) {
   return static_cast<double>(counter.count()) / static_cast<double>(frames.size() - kWarmUp);
 }
 
-// Not zero: measured 598 per frame, most of them inside OpenCV (DIS's calc(), filters and
-// remaps; docs/design.md, "Speed of dense"; 542 before the edge snap, whose opening builds an
-// OpenCV filter engine per call). A guard against new ones.
+// Not zero: measured 582 per frame, most of them inside OpenCV (filters and remaps;
+// docs/design.md, "Speed of dense"; 598 when the flow was OpenCV's DIS, whose calc() allocates;
+// 542 before the edge snap, whose opening builds an OpenCV filter engine per call). A guard
+// against new ones.
 TEST(Allocations, DenseStaysUnderItsMeasuredAllocationsPerFrame) {
   const double per_frame = allocationsPerFrame(Method::kDense);
   std::printf("dense: %.1f allocations per frame\n", per_frame);
