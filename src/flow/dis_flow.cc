@@ -608,6 +608,7 @@ void DisFlow::searchPatches(const DisFrame::Level& from, const DisFrame::Level& 
 void DisFlow::densify(const DisFrame::Level& from, const DisFrame::Level& to,
                       const LevelShape& shape, float scale, cv::Mat* dense) {
   const float right = shape.w - 1.0f - kEps, bottom = shape.h - 1.0f - kEps;
+  const float* second = to.pixels();  // once: the library is built -fPIC, where it is not inlined
   const int second_stride = static_cast<int>(to.image.step1());
   const v_float32x4 zero = cv::v_setzero_f32(), one = cv::v_setall_f32(1.0f);
   const v_float32x4 lanes(0, 1, 2, 3);
@@ -632,7 +633,7 @@ void DisFlow::densify(const DisFrame::Level& from, const DisFrame::Level& to,
           const v_int32x4 x0 = cv::v_trunc(x);
           const v_float32x4 wx1 = x - cv::v_cvt_f32(x0);
           const v_float32x4 wx0 = cv::v_cvt_f32(x0 + cv::v_setall_s32(1)) - x;
-          const float* top = to.pixels() + y0 * second_stride;
+          const float* top = second + y0 * second_stride;
           const v_float32x4 diff =
               bilinearRow(top, top + second_stride, x0, wx0, wx1, w_top, w_bottom) - pixel;
           const v_float32x4 weight = one / cv::v_max(one, cv::v_abs(diff));
