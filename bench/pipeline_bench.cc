@@ -1,6 +1,7 @@
 // Timings of the paper's stages on synthetic frame pairs at 320x240 and 640x480, of `dense`'s
-// edge snap beside the guided filter of OpenCV's ximgproc, and of every method's whole
-// pipeline on synthetic and DAVIS clips beside OpenCV MOG2 (method mog2).
+// edge snap beside the guided filter of OpenCV's ximgproc, of `dense`'s flow beside OpenCV's DIS,
+// and of every method's whole pipeline on synthetic and DAVIS clips beside OpenCV MOG2 (method
+// mog2).
 //   build/bench/movseg_bench [--benchmark_filter=...]
 // Each paper stage runs on the output of the previous ones for the same pair, exactly as in the
 // paper's pipeline (src/pipelines/paper.cc), so the stage times add up to the pipeline's. The
@@ -25,10 +26,12 @@
 #include "core/frame.h"
 #include "cut/geodesic.h"
 #include "cut/graph_cut.h"
+#include "flow/dense_flow.h"
 #include "motion/camera_tracker.h"
 #include "motion/model.h"
 #include "movseg/fields.h"
 #include "movseg/segmenter.h"
+#include "opencv_dense_flow.h"
 #include "refine/edge_snap.h"
 #include "synth/synth.h"
 
@@ -251,12 +254,46 @@ void processClip(benchmark::State& state, const Clip& clip, const std::string& m
   state.counters["cut_ms"] = sum.cut_ms / n;
 }
 
-// BM_Process/<clip>/<method> for every method on each clip that could be read.
+// The flow of a clip's pairs as `dense` computes it, one pair an iteration: from each frame to
+// the previous one, from the previous pair's flow (DenseFlow), by movseg's DisFlow or, as
+// before it, by OpenCV's cv::DISOpticalFlow at the same settings (the same flows).
+template <class Flow>
+void denseFlowClip(benchmark::State& state, const Clip& clip) {
+  Clip grey{clip.name, {}};
+  for (const cv::Mat& frame : clip.frames) {
+    grey.frames.emplace_back();
+    cv::cvtColor(frame, grey.frames.back(), cv::COLOR_BGR2GRAY);
+  }
+  Flow flow(Params().flow_finest_scale);
+  cv::Mat flows[2];  // two in flight, as the pipeline keeps them
+  size_t call = 0;
+  for (; call < grey.frames.size(); ++call) flow.next(grey.frame(call), &flows[call % 2]);
+  for (auto _ : state) {
+    flow.next(grey.frame(call), &flows[call % 2]);
+    ++call;
+  }
+}
+
+// BM_Process/<clip>/<method> for every method on each clip that could be read, and
+// BM_DenseFlow/<clip>/<implementation> on those at 320x240.
 void registerPipelines() {
   std::vector<Clip> clips = {synthClip({320, 240}), synthClip({640, 480})};
   for (const cv::Size size : {cv::Size(320, 240), cv::Size()}) {
     Clip clip = davisClip("dog", size);
     if (!clip.frames.empty()) clips.push_back(std::move(clip));
+  }
+  for (const Clip& clip : clips) {
+    if (clip.frames.front().size() != cv::Size(320, 240)) continue;
+    benchmark::RegisterBenchmark(("BM_DenseFlow/" + clip.name + "/opencv").c_str(),
+                                 [clip](benchmark::State& state) {
+                                   denseFlowClip<OpenCvDenseFlow>(state, clip);
+                                 })
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("BM_DenseFlow/" + clip.name + "/movseg").c_str(),
+                                 [clip](benchmark::State& state) {
+                                   denseFlowClip<DenseFlow>(state, clip);
+                                 })
+        ->Unit(benchmark::kMillisecond);
   }
   for (const Clip& clip : clips) {
     for (const std::string& method : enumNames<Method>()) {
