@@ -221,8 +221,8 @@ struct PatchDiffs {
   v_float32x4 rows[2 * kPatch];
 };
 
-// The mean-normalised SSD between a patch and its landing, and with `kGradients` the patch's
-// gradients weighted by the differences: the Gauss-Newton step before the inverse tensor. The
+// How a patch matches at a landing: the mean-normalised SSD and, for a descent, the patch's
+// gradients weighted by the differences (the Gauss-Newton step before the inverse tensor). The
 // sums run over the lanes of two vectors per row and are reduced as OpenCV's
 // processPatchMeanNorm and computeSSDMeanNorm do, so that the results are theirs to the bit.
 struct PatchMatch {
@@ -231,10 +231,14 @@ struct PatchMatch {
   float step_x, step_y;
 };
 
-float meanNormalisedSsd(float sum_sq, float sum) { return sum_sq - sum * sum / kPatchArea; }
+// A step's component: the gradient weighted by the differences, less the share of their mean
+// (the mean normalisation).
+float stepComponent(const v_float32x4& weighted, float diff_sum, float grad_sum) {
+  return cv::v_reduce_sum(weighted) - diff_sum * grad_sum / kPatchArea;
+}
 
-// The step's sums from differences already known (`grad_x_sum`, `grad_y_sum`: the patch's
-// gradients summed, which the mean normalisation takes away).
+// The step of a match whose differences are known (`grad_x_sum`, `grad_y_sum`: the patch's
+// gradients summed).
 void stepFromDiffs(const SearchImages& images, int i, int j, const PatchDiffs& diffs,
                    float grad_x_sum, float grad_y_sum, PatchMatch* match) {
   const float* gx = images.grad_x + i * images.grad_stride + j;
@@ -248,14 +252,15 @@ void stepFromDiffs(const SearchImages& images, int i, int j, const PatchDiffs& d
     gx += images.grad_stride;
     gy += images.grad_stride;
   }
-  match->step_x = cv::v_reduce_sum(sum_gx) - match->sum * grad_x_sum / kPatchArea;
-  match->step_y = cv::v_reduce_sum(sum_gy) - match->sum * grad_y_sum / kPatchArea;
+  match->step_x = stepComponent(sum_gx, match->sum, grad_x_sum);
+  match->step_y = stepComponent(sum_gy, match->sum, grad_y_sum);
 }
 
-// With `keep`, the differences are kept there (for stepFromDiffs).
-template <bool kGradients>
+// A candidate's match (kStep false), its differences kept in *diffs for stepFromDiffs; or a
+// descent's (kStep true), with its step, `diffs` unused.
+template <bool kStep>
 PatchMatch matchPatch(const SearchImages& images, int i, int j, const Landing& at,
-                      PatchDiffs* keep, float grad_x_sum = 0, float grad_y_sum = 0) {
+                      PatchDiffs* diffs, float grad_x_sum = 0, float grad_y_sum = 0) {
   const v_float32x4 w00 = cv::v_setall_f32(at.w00), w01 = cv::v_setall_f32(at.w01);
   const v_float32x4 w10 = cv::v_setall_f32(at.w10), w11 = cv::v_setall_f32(at.w11);
   const float* first = images.first + i * images.first_stride + j;
@@ -265,7 +270,7 @@ PatchMatch matchPatch(const SearchImages& images, int i, int j, const Landing& a
   v_float32x4 top_left = cv::v_load(second), top_right = cv::v_load(second + 4);
   v_float32x4 top_left1 = cv::v_load(second + 1), top_right1 = cv::v_load(second + 5);
   v_float32x4 sum = cv::v_setzero_f32(), sum_sq = sum, sum_gx = sum, sum_gy = sum;
-  // Unrolled, the eight rows cost 5 % fewer instructions in the search (GCC keeps the loop).
+  // Unrolled, the eight rows cost 4 % fewer instructions in the search (GCC keeps the loop).
 #pragma GCC unroll 8
   for (int row = 0; row < kPatch; ++row) {
     second += images.second_stride;
@@ -275,15 +280,14 @@ PatchMatch matchPatch(const SearchImages& images, int i, int j, const Landing& a
         w00 * top_left + w01 * top_left1 + w10 * left + w11 * left1 - cv::v_load(first);
     const v_float32x4 diff_right =
         w00 * top_right + w01 * top_right1 + w10 * right + w11 * right1 - cv::v_load(first + 4);
-    if constexpr (kGradients) {
+    if constexpr (kStep) {
       sum_gx += diff_left * cv::v_load(gx) + diff_right * cv::v_load(gx + 4);
       sum_gy += diff_left * cv::v_load(gy) + diff_right * cv::v_load(gy + 4);
       gx += images.grad_stride;
       gy += images.grad_stride;
-    }
-    if (keep != nullptr) {
-      keep->rows[2 * row] = diff_left;
-      keep->rows[2 * row + 1] = diff_right;
+    } else {
+      diffs->rows[2 * row] = diff_left;
+      diffs->rows[2 * row + 1] = diff_right;
     }
     sum_sq += diff_left * diff_left + diff_right * diff_right;
     sum += diff_left + diff_right;
@@ -291,12 +295,76 @@ PatchMatch matchPatch(const SearchImages& images, int i, int j, const Landing& a
     first += images.first_stride;
   }
   const float total = cv::v_reduce_sum(sum);
-  PatchMatch match{meanNormalisedSsd(cv::v_reduce_sum(sum_sq), total), total, 0, 0};
-  if constexpr (kGradients) {
-    match.step_x = cv::v_reduce_sum(sum_gx) - total * grad_x_sum / kPatchArea;
-    match.step_y = cv::v_reduce_sum(sum_gy) - total * grad_y_sum / kPatchArea;
+  PatchMatch match{cv::v_reduce_sum(sum_sq) - total * total / kPatchArea, total, 0, 0};
+  if constexpr (kStep) {
+    match.step_x = stepComponent(sum_gx, total, grad_x_sum);
+    match.step_y = stepComponent(sum_gy, total, grad_y_sum);
   }
   return match;
+}
+
+// ---- one visit of a patch ------------------------------------------------------------------
+
+struct Flow {
+  float x, y;
+  bool operator==(const Flow& o) const { return x == o.x && y == o.y; }
+};
+
+// The best of a patch's candidates for its flow: its own first, then the others in turn, each
+// taking the place only with a smaller SSD, as OpenCV tries them. The best's differences are
+// kept (`diffs`: room for two).
+class BestCandidate {
+ public:
+  BestCandidate(const SearchImages& images, int i, int j, Flow own, PatchDiffs* diffs)
+      : images_(images), i_(i), j_(j), best_diffs_(&diffs[0]), spare_diffs_(&diffs[1]),
+        flow_(own),
+        match_(matchPatch<false>(images, i, j, images.landing(i, j, own.x, own.y), best_diffs_)) {}
+
+  void consider(Flow candidate) {
+    if (candidate == flow_) return;  // the same SSD, which would not win
+    const PatchMatch m = matchPatch<false>(
+        images_, i_, j_, images_.landing(i_, j_, candidate.x, candidate.y), spare_diffs_);
+    if (m.ssd < match_.ssd) {
+      flow_ = candidate, match_ = m;
+      std::swap(best_diffs_, spare_diffs_);
+    }
+  }
+
+  Flow flow() const { return flow_; }
+  const PatchMatch& match() const { return match_; }
+  const PatchDiffs& diffs() const { return *best_diffs_; }
+
+ private:
+  const SearchImages& images_;
+  const int i_, j_;
+  PatchDiffs* best_diffs_;
+  PatchDiffs* spare_diffs_;
+  Flow flow_;
+  PatchMatch match_;
+};
+
+// Gauss-Newton steps from `start` (its match and differences known) until the SSD stops falling;
+// the step that found it so is kept, as OpenCV keeps it. A descent that went further than a
+// patch from its start is not trusted: the start is kept. The result goes to *x, *y.
+void descend(const SearchImages& images, int i, int j, const DisFrame::PatchGradients& g,
+             Flow start, PatchMatch m, const PatchDiffs& start_diffs, float* x, float* y) {
+  stepFromDiffs(images, i, j, start_diffs, g.sum_x, g.sum_y, &m);
+  float ux = start.x, uy = start.y, previous = kInf;
+  for (int step = 1;; ++step) {
+    ux -= g.inv_xx * m.step_x + g.inv_xy * m.step_y;
+    uy -= g.inv_xy * m.step_x + g.inv_yy * m.step_y;
+    if (m.ssd >= previous || step == kDescentSteps) break;
+    previous = m.ssd;
+    m = matchPatch<true>(images, i, j, images.landing(i, j, ux, uy), nullptr, g.sum_x, g.sum_y);
+  }
+  const float moved_x = ux - start.x, moved_y = uy - start.y;
+  const double moved = std::sqrt(static_cast<double>(moved_x) * moved_x +
+                                 static_cast<double>(moved_y) * moved_y);
+  if (moved <= kPatch) {
+    *x = ux, *y = uy;
+  } else {
+    *x = start.x, *y = start.y;
+  }
 }
 
 // ---- densification ---------------------------------------------------------------------------
@@ -539,6 +607,8 @@ void DisFlow::searchPatches(const DisFrame::Level& from, const DisFrame::Level& 
                             static_cast<float>(kBorder + shape.h - 1)};
   float* sx = sparse_x_.data();
   float* sy = sparse_y_.data();
+  // The candidates' differences are kept: the descent's first step, at the best candidate, is
+  // taken from there (OpenCV computes them again).
   PatchDiffs diffs[2];
   const int band_rows = static_cast<int>(std::ceil(shape.hs / static_cast<double>(kStripes)));
   for (int band = 0; band < kStripes; ++band) {
@@ -553,48 +623,12 @@ void DisFlow::searchPatches(const DisFrame::Level& from, const DisFrame::Level& 
           const int k = is * shape.ws + js;
           const int i = is * kPatchStride, j = js * kPatchStride;
           if (pass == 0) sx[k] = start_x_[k], sy[k] = start_y_[k];
-          // The candidates' differences are kept, the best's in `best_diffs`: the descent's
-          // first step is taken from there (OpenCV computes them again).
-          PatchDiffs* best_diffs = &diffs[0];
-          PatchDiffs* candidate_diffs = &diffs[1];
-          float best_x = sx[k], best_y = sy[k];
-          PatchMatch best =
-              matchPatch<false>(images, i, j, images.landing(i, j, best_x, best_y), best_diffs);
-          const auto consider = [&](float cx, float cy) {
-            if (cx == best_x && cy == best_y) return;  // the same SSD, which would not win
-            const PatchMatch m =
-                matchPatch<false>(images, i, j, images.landing(i, j, cx, cy), candidate_diffs);
-            if (m.ssd < best.ssd) {
-              best = m, best_x = cx, best_y = cy;
-              std::swap(best_diffs, candidate_diffs);
-            }
-          };
-          if (warm) consider(initial_x_[k], initial_y_[k]);
-          if (js != first_col) consider(sx[k - dir], sy[k - dir]);
-          if (is != first_row) consider(sx[k - dir * shape.ws], sy[k - dir * shape.ws]);
-          // Gauss-Newton steps from the best candidate, until the SSD stops falling (the step
-          // that found it so is kept, as OpenCV keeps it).
-          const DisFrame::PatchGradients& g = from.patches[k];
-          PatchMatch m = best;
-          stepFromDiffs(images, i, j, *best_diffs, g.sum_x, g.sum_y, &m);
-          float ux = best_x, uy = best_y, previous = kInf;
-          for (int step = 1;; ++step) {
-            ux -= g.inv_xx * m.step_x + g.inv_xy * m.step_y;
-            uy -= g.inv_xy * m.step_x + g.inv_yy * m.step_y;
-            if (m.ssd >= previous || step == kDescentSteps) break;
-            previous = m.ssd;
-            m = matchPatch<true>(images, i, j, images.landing(i, j, ux, uy), nullptr, g.sum_x,
-                                 g.sum_y);
-          }
-          // A descent that went further than a patch from where it started is not trusted.
-          const float moved_x = ux - best_x, moved_y = uy - best_y;
-          const double moved = std::sqrt(static_cast<double>(moved_x) * moved_x +
-                                         static_cast<double>(moved_y) * moved_y);
-          if (moved <= kPatch) {
-            sx[k] = ux, sy[k] = uy;
-          } else {
-            sx[k] = best_x, sy[k] = best_y;
-          }
+          BestCandidate best(images, i, j, {sx[k], sy[k]}, diffs);
+          if (warm) best.consider({initial_x_[k], initial_y_[k]});
+          if (js != first_col) best.consider({sx[k - dir], sy[k - dir]});
+          if (is != first_row) best.consider({sx[k - dir * shape.ws], sy[k - dir * shape.ws]});
+          descend(images, i, j, from.patches[k], best.flow(), best.match(), best.diffs(), &sx[k],
+                  &sy[k]);
         }
       }
     }

@@ -1,17 +1,21 @@
 // Dense Inverse Search optical flow (Kroeger et al. 2016) as OpenCV's cv::DISOpticalFlow computes
 // it with movseg's settings: the FAST preset (8x8 patches every 4 pixels, 16 gradient-descent
 // iterations over two passes, mean-normalised patches, spatial propagation), the finest scale
-// given, no variational refinement. It follows OpenCV's float arithmetic operation for operation,
-// so that its flow is OpenCV's (tests/flow/dis_flow_test.cc measures how close); it is faster
-// because it does less work for the same numbers:
+// given, no variational refinement. It follows OpenCV 4.6's float arithmetic operation for
+// operation, so that its flow is OpenCV's: identical on every pair tried
+// (tests/flow/dis_flow_test.cc). It is faster because it does less work for the same numbers:
 // - a frame is prepared once (pyramid, gradients, structure tensors) and serves as the first
 //   image of one pair and the second of the next, where OpenCV rebuilds both pyramids per pair;
 // - the images are kept as floats, so that a patch's row is two loads where OpenCV widens bytes
 //   and shorts on every visit of a patch;
-// - densification works on four pixels at once (OpenCV's is scalar);
+// - a candidate's differences are kept, so that the descent's first step, at the best candidate,
+//   is not computed again;
+// - densification works on four pixels at once (OpenCV's is scalar), and so does the scaling up
+//   of the finest level's flow along x (cv::resize's is scalar there);
 // - the initial flow and the coarser level's flow are read at the patches' centres alone,
 //   where OpenCV resizes whole fields and reads those centres.
 // Buffers are kept across calls: a stream of frames of one size allocates nothing once started.
+// One object per stream: calc() uses the object's buffers.
 #pragma once
 
 #include <vector>
@@ -36,9 +40,6 @@ class DisFrame {
   cv::Size size() const { return size_; }
   bool empty() const { return levels_.empty(); }
 
- private:
-  friend class DisFlow;
-
   // What the patch search knows of a patch of the first image: its gradients summed, and the
   // inverse of its structure tensor, the Gauss-Newton step's matrix.
   struct PatchGradients {
@@ -46,13 +47,16 @@ class DisFrame {
     float sum_x, sum_y;
   };
 
+ private:
+  friend class DisFlow;
+
   struct Level {
     cv::Size size;
     cv::Mat grey;            // CV_8U: the finer level halved by area averaging
-    cv::Mat grey_bordered;   // CV_8U: grey with the border below, replicated
-    cv::Mat image;           // CV_32F: grey with kBorder pixels replicated on every side
-    cv::Mat grad_x, grad_y;  // CV_32F: 3x3 Sobel (cv::spatialGradient) of grey
-    cv::Mat grad_x16, grad_y16;
+    cv::Mat grey_bordered;   // CV_8U: grey with kBorder pixels replicated on every side
+    cv::Mat image;           // CV_32F: grey_bordered, where patches are matched
+    cv::Mat grad_x, grad_y;  // CV_32F: 3x3 Sobel of grey (cv::spatialGradient, reflected border)
+    cv::Mat grad_x16, grad_y16;  // CV_16S: spatialGradient's output
     std::vector<PatchGradients> patches;  // row by row, every kPatchStride pixels
     const float* pixels() const;          // grey's first pixel in `image`
   };
