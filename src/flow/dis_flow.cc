@@ -29,8 +29,8 @@ struct Scales {
 Scales searchedScales(cv::Size size, int finest) {
   const double reach = std::max(size.width, size.height) / (4.0 * kPatch);
   const int fits = std::min(size.width, size.height) / kPatch;
-  const int coarsest = std::min(static_cast<int>(std::log(reach) / std::log(2.0) + 0.5),
-                                static_cast<int>(std::log(static_cast<double>(fits)) / std::log(2.0)));
+  const int deepest = static_cast<int>(std::log(static_cast<double>(fits)) / std::log(2.0));
+  const int coarsest = std::min(static_cast<int>(std::log(reach) / std::log(2.0) + 0.5), deepest);
   if (coarsest >= finest) return {finest, coarsest};
   // A frame too small for the finest scale asked (under ~46 pixels on its longer side at scale 1)
   // gets the scales OpenCV then picks from its width (after Kroeger's code). OpenCV also keeps

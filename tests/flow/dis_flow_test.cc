@@ -40,8 +40,8 @@ FlowError flowError(const cv::Mat& flow, const cv::Mat& truth, const cv::Rect& r
   cv::split(difference, xy);
   cv::Mat distance;
   cv::magnitude(xy[0], xy[1], distance);
-  return {cv::mean(distance)[0],
-          static_cast<double>(cv::countNonZero(distance > 0.5)) / static_cast<double>(region.area())};
+  const double over_half = cv::countNonZero(distance > 0.5);
+  return {cv::mean(distance)[0], over_half / region.area()};
 }
 
 FlowError flowError(const cv::Mat& flow, const cv::Mat& truth) {
@@ -53,8 +53,10 @@ cv::Mat warpFlow(const cv::Matx23d& warp, cv::Size size) {
   cv::Mat flow(size, CV_32FC2);
   for (int y = 0; y < size.height; ++y) {
     for (int x = 0; x < size.width; ++x) {
-      flow.at<cv::Vec2f>(y, x) = cv::Vec2f(static_cast<float>(warp(0, 0) * x + warp(0, 1) * y + warp(0, 2) - x),
-                                           static_cast<float>(warp(1, 0) * x + warp(1, 1) * y + warp(1, 2) - y));
+      const double to_x = warp(0, 0) * x + warp(0, 1) * y + warp(0, 2);
+      const double to_y = warp(1, 0) * x + warp(1, 1) * y + warp(1, 2);
+      flow.at<cv::Vec2f>(y, x) =
+          cv::Vec2f(static_cast<float>(to_x - x), static_cast<float>(to_y - y));
     }
   }
   return flow;
@@ -237,7 +239,8 @@ std::vector<cv::Mat> clip(cv::Size size, int frames) {
   const cv::Mat mover = test::greyTexture({size.width / 5, size.height / 5}, 22);
   std::vector<cv::Mat> out;
   for (int t = 0; t < frames; ++t) {
-    cv::Mat frame = warped(scene, cv::Matx23d(1, 0, 1.3 * t, 0, 1, 0.7 * t))(cv::Rect({0, 0}, size)).clone();
+    const cv::Matx23d pan(1, 0, 1.3 * t, 0, 1, 0.7 * t);
+    cv::Mat frame = warped(scene, pan)(cv::Rect({0, 0}, size)).clone();
     mover.copyTo(frame(cv::Rect({size.width / 3 + 3 * t, size.height / 3}, mover.size())));
     out.push_back(frame);
   }
