@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -210,6 +211,17 @@ TEST(DisFlow, TheInitialFlowMayBeTheOutput) {
   dis.calc(current, previous, initial, &separate);
   dis.calc(current, previous, in_place, &in_place);
   EXPECT_EQ(cv::norm(separate, in_place, cv::NORM_INF), 0.0);
+}
+
+// An initial flow of NaN (a caller's bug) lands on the border, scores a NaN SSD and never wins:
+// the flow is the one without an initial flow. (OpenCV's DIS reads past its images there.)
+TEST(DisFlow, ANaNInitialFlowNeverWins) {
+  const cv::Size size(160, 120);
+  const cv::Mat previous = test::greyTexture(size, 15);
+  const cv::Mat current = warped(previous, cv::Matx23d(1, 0, 2.2, 0, 1, -1.3));
+  const cv::Mat nan(size, CV_32FC2, cv::Scalar::all(std::numeric_limits<double>::quiet_NaN()));
+  const cv::Mat flow = ourFlow(current, previous, nan);
+  EXPECT_EQ(cv::norm(flow, ourFlow(current, previous, cv::Mat()), cv::NORM_INF), 0.0);
 }
 
 // A prepared frame serves as the first image of one pair and the second of the next: the flows
