@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <opencv2/core/hal/intrin.hpp>
 #include <opencv2/imgproc.hpp>
@@ -320,14 +321,22 @@ class BestCandidate {
         flow_(own),
         match_(matchPatch<false>(images, i, j, images.landing(i, j, own.x, own.y), best_diffs_)) {}
 
-  void consider(Flow candidate) {
-    if (candidate == flow_) return;  // the same SSD, which would not win
+  // The candidate's SSD, or NaN when it was not computed (the best's flow: the same SSD, which
+  // would not win).
+  float consider(Flow candidate) {
+    if (candidate == flow_) return std::numeric_limits<float>::quiet_NaN();
     const PatchMatch m = matchPatch<false>(
         images_, i_, j_, images_.landing(i_, j_, candidate.x, candidate.y), spare_diffs_);
     if (m.ssd < match_.ssd) {
       flow_ = candidate, match_ = m;
       std::swap(best_diffs_, spare_diffs_);
     }
+    return m.ssd;
+  }
+
+  // The same for a candidate whose SSD is known (NaN: not known), matched again only to win.
+  void consider(Flow candidate, float ssd) {
+    if (std::isnan(ssd) || ssd < match_.ssd) consider(candidate);
   }
 
   Flow flow() const { return flow_; }
@@ -487,7 +496,7 @@ void DisFlow::calc(const DisFrame& from, const DisFrame& to, const cv::Mat& init
   const LevelShape finest_shape(from.levels_[0].size);
   const size_t most_patches = static_cast<size_t>(finest_shape.ws) * finest_shape.hs;
   for (auto* buffer :
-       {&sparse_x_, &sparse_y_, &start_x_, &start_y_, &initial_x_, &initial_y_}) {
+       {&sparse_x_, &sparse_y_, &start_x_, &start_y_, &initial_x_, &initial_y_, &initial_ssd_}) {
     buffer->resize(most_patches);
   }
   dense_.create(finest_shape.h, finest_shape.w, CV_32FC2);
@@ -624,7 +633,10 @@ void DisFlow::searchPatches(const DisFrame::Level& from, const DisFrame::Level& 
           const int i = is * kPatchStride, j = js * kPatchStride;
           if (pass == 0) sx[k] = start_x_[k], sy[k] = start_y_[k];
           BestCandidate best(images, i, j, {sx[k], sy[k]}, diffs);
-          if (warm) best.consider({initial_x_[k], initial_y_[k]});
+          // The initial flow's candidate is tried in both passes at the same place: the second
+          // pass takes its SSD from the first.
+          if (warm && pass == 0) initial_ssd_[k] = best.consider({initial_x_[k], initial_y_[k]});
+          if (warm && pass == 1) best.consider({initial_x_[k], initial_y_[k]}, initial_ssd_[k]);
           if (js != first_col) best.consider({sx[k - dir], sy[k - dir]});
           if (is != first_row) best.consider({sx[k - dir * shape.ws], sy[k - dir * shape.ws]});
           descend(images, i, j, from.patches[k], best.flow(), best.match(), best.diffs(), &sx[k],

@@ -9,7 +9,8 @@
 // - the images are kept as floats, so that a patch's row is two loads where OpenCV widens bytes
 //   and shorts on every visit of a patch;
 // - a candidate's differences are kept, so that the descent's first step, at the best candidate,
-//   is not computed again;
+//   is not computed again, and the initial flow's candidate, tried at a patch in both passes, is
+//   matched once;
 // - densification works on four pixels at once (OpenCV's is scalar), and so does the scaling up
 //   of the finest level's flow along x (cv::resize's is scalar there);
 // - the initial flow and the coarser level's flow are read at the patches' centres alone,
@@ -99,8 +100,9 @@ class DisFlow {
 
   int finest_scale_;
   // Per patch of the current level: the flow searched (sparse), the flow it starts from (the
-  // coarser level's, scaled up) and the initial flow's candidate.
+  // coarser level's, scaled up), the initial flow's candidate and its SSD.
   std::vector<float> sparse_x_, sparse_y_, start_x_, start_y_, initial_x_, initial_y_;
+  std::vector<float> initial_ssd_;
   cv::Mat dense_;        // CV_32FC2: the last level's dense flow
   cv::Mat dense_level_;  // the view of dense_ at the current level's size
   std::vector<float> blocks_, row_sums_, totals_, running_;  // the structure tensors' sums
