@@ -673,12 +673,13 @@ void DisFlow::densify(const DisFrame::Level& from, const DisFrame::Level& to,
           const int k = is * shape.ws + js;
           const float y = std::min(bottom, std::max(0.0f, i + sparse_y_[k]));
           const int y0 = static_cast<int>(y);
-          const float w_bottom = y - y0, w_top = (y0 + 1) - y;
+          const float y0f = static_cast<float>(y0);
+          const float w_bottom = y - y0f, w_top = (y0f + 1) - y;
           const v_float32x4 fx = cv::v_setall_f32(sparse_x_[k]);
           const v_float32x4 x = cv::v_min(cv::v_max(column + fx, zero), right_v);
           const v_int32x4 x0 = cv::v_trunc(x);
-          const v_float32x4 wx1 = x - cv::v_cvt_f32(x0);
-          const v_float32x4 wx0 = cv::v_cvt_f32(x0 + cv::v_setall_s32(1)) - x;
+          const v_float32x4 x0f = cv::v_cvt_f32(x0);  // x0 + 1 is exact in float too
+          const v_float32x4 wx1 = x - x0f, wx0 = (x0f + one) - x;
           const float* top = second + y0 * second_stride;
           const v_float32x4 diff =
               bilinearRow(top, top + second_stride, x0, wx0, wx1, w_top, w_bottom) - pixel;
