@@ -40,16 +40,14 @@ void motionEvidence(const cv::Mat& residual, float scale, const Params& params, 
 
 namespace {
 
-// Side of the patch the two explanations are compared over: 5x5, as the texture measure's.
-constexpr int kPatch = 5;
-
-// The previous frame brought through `map`, its absolute difference to `grey`, averaged over
-// the patch (CV_32F).
-void patchError(const cv::Mat& grey, const cv::Mat& previous_grey, const cv::Mat& map,
-                cv::Mat* warped, cv::Mat* error) {
-  cv::remap(previous_grey, *warped, map, cv::noArray(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+// The previous frame (`previous`, set as the source) brought through `map`, its absolute
+// difference to `grey`, averaged over the 5x5 patch the two explanations are compared over (as
+// the texture measure's): the values of cv::remap, cv::absdiff and cv::blur.
+void patchError(const cv::Mat& grey, const BilinearRemap& previous, const cv::Mat& map,
+                BoxMean5* patch_mean, cv::Mat* warped, cv::Mat* error) {
+  previous.remap(map, warped);
   cv::absdiff(grey, *warped, *warped);
-  cv::blur(*warped, *error, cv::Size(kPatch, kPatch));  // 8-bit: rounded, as fine as noise
+  patch_mean->apply(*warped, error);  // 8-bit: rounded, as fine as noise
 }
 
 // The median of an 8-bit image.
@@ -67,8 +65,9 @@ int median8(const cv::Mat& image) {
 void PhotometricCheck::confirm(const cv::Mat& grey, const cv::Mat& previous_grey,
                                const cv::Mat& flow_map, const cv::Mat& camera_map,
                                const Params& params, cv::Mat* confirmation) {
-  patchError(grey, previous_grey, flow_map, &by_flow_, &flow_error_);
-  patchError(grey, previous_grey, camera_map, &by_camera_, &camera_error_);
+  previous_.setSource(previous_grey, cv::BORDER_REPLICATE);
+  patchError(grey, previous_, flow_map, &patch_mean_, &by_flow_, &flow_error_);
+  patchError(grey, previous_, camera_map, &patch_mean_, &by_camera_, &camera_error_);
   // One grey level at least: an 8-bit difference cannot resolve less.
   const float margin = static_cast<float>(params.photometric_margin) *
                        static_cast<float>(std::max(median8(camera_error_), 1));
@@ -95,8 +94,9 @@ void confirmMotion(const cv::Mat& confirmation, cv::Mat* evidence) {
 }
 
 void carryMask(const cv::Mat& previous_mask, const cv::Mat& flow_map, cv::Mat* carried) {
-  cv::remap(previous_mask, *carried, flow_map, cv::noArray(), cv::INTER_LINEAR,
-            cv::BORDER_CONSTANT, cv::Scalar(0));
+  BilinearRemap remap;
+  remap.setSource(previous_mask, cv::BORDER_CONSTANT);
+  remap.remap(flow_map, carried);
 }
 
 namespace {

@@ -7,6 +7,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "evidence/bilinear_remap.h"
+#include "evidence/box_mean.h"
 #include "movseg/params.h"
 
 namespace movseg {
@@ -33,6 +35,8 @@ class PhotometricCheck {
                const cv::Mat& camera_map, const Params& params, cv::Mat* confirmation);
 
  private:
+  BilinearRemap previous_;  // the previous grey frame, its border replicated
+  BoxMean5 patch_mean_;
   cv::Mat by_flow_, by_camera_, flow_error_, camera_error_;
 };
 

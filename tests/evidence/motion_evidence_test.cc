@@ -1,8 +1,17 @@
 #include "evidence/motion_evidence.h"
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "core/quantile.h"
+#include "flow/dense_flow.h"
 #include "flow/flow_camera.h"
 #include "test_support.h"
 
@@ -48,6 +57,150 @@ TEST(PhotometricCheck, FlatRegionsAreNeverConfirmed) {
   PhotometricCheck check;
   check.confirm(flat, flat, flow_map, camera_map, Params(), &confirmation);
   EXPECT_EQ(cv::countNonZero(confirmation), 0);
+}
+
+// The confirmation as OpenCV's functions make it: the previous frame through each map by
+// cv::remap, its difference to the frame by cv::absdiff, averaged by cv::blur; the margin from
+// the median of the camera's. PhotometricCheck must give these values to the bit.
+cv::Mat openCvConfirmation(const cv::Mat& grey, const cv::Mat& previous, const cv::Mat& flow_map,
+                           const cv::Mat& camera_map, const Params& params) {
+  cv::Mat errors[2];
+  const cv::Mat* maps[] = {&flow_map, &camera_map};
+  for (int i = 0; i < 2; ++i) {
+    cv::Mat warped;
+    cv::remap(previous, warped, *maps[i], cv::noArray(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+    cv::absdiff(grey, warped, warped);
+    cv::blur(warped, errors[i], cv::Size(5, 5));
+  }
+  LevelHistogram histogram{};
+  for (auto it = errors[1].begin<uchar>(); it != errors[1].end<uchar>(); ++it) ++histogram[*it];
+  const float margin =
+      static_cast<float>(params.photometric_margin) * static_cast<float>(std::max(median(histogram), 1));
+  cv::Mat confirmation(grey.size(), CV_32F);
+  for (int y = 0; y < grey.rows; ++y) {
+    for (int x = 0; x < grey.cols; ++x) {
+      const int better = errors[1].at<uchar>(y, x) - errors[0].at<uchar>(y, x);
+      confirmation.at<float>(y, x) = std::clamp(static_cast<float>(better) / margin, 0.f, 1.f);
+    }
+  }
+  return confirmation;
+}
+
+// Bit for bit, and not trivially: some pixels confirmed in part.
+void expectOpenCvsConfirmation(const cv::Mat& grey, const cv::Mat& previous,
+                               const cv::Mat& flow_map, const cv::Mat& camera_map,
+                               const std::string& what, const Params& params = Params()) {
+  PhotometricCheck check;
+  cv::Mat ours;
+  check.confirm(grey, previous, flow_map, camera_map, params, &ours);
+  const cv::Mat opencv = openCvConfirmation(grey, previous, flow_map, camera_map, params);
+  ASSERT_EQ(ours.size(), opencv.size()) << what;
+  ASSERT_EQ(ours.type(), CV_32F) << what;
+  EXPECT_EQ(cv::countNonZero(ours != opencv), 0) << what;
+  if (grey.total() >= 100) {
+    EXPECT_GT(cv::countNonZero((ours > 0) & (ours < 1)), 0) << what << ": nothing confirmed in part";
+  }
+}
+
+void expectOpenCvsCarriedMask(const cv::Mat& mask, const cv::Mat& flow_map,
+                              const std::string& what) {
+  cv::Mat ours, opencv;
+  carryMask(mask, flow_map, &ours);
+  cv::remap(mask, opencv, flow_map, cv::noArray(), cv::INTER_LINEAR, cv::BORDER_CONSTANT,
+            cv::Scalar(0));
+  ASSERT_EQ(ours.size(), opencv.size()) << what;
+  ASSERT_EQ(ours.type(), opencv.type()) << what;
+  EXPECT_EQ(cv::countNonZero(ours != opencv), 0) << what;
+}
+
+cv::Mat randomFlow(cv::Size size, float reach, uint64 seed) {
+  cv::Mat flow(size, CV_32FC2);
+  cv::RNG(seed).fill(flow, cv::RNG::UNIFORM, cv::Scalar::all(-reach), cv::Scalar::all(reach));
+  cv::GaussianBlur(flow, flow, {0, 0}, 2);  // smooth, as a flow; still leaving the frame
+  return flow;
+}
+
+// A moved texture, random flows around the truth (some leaving the frame), a camera that zooms
+// and turns a little: the confirmation and the carried mask are OpenCV's, at sizes down to a
+// pixel (the pipeline gives the check frames of 16 pixels a side and more).
+TEST(PhotometricCheck, GivesOpenCvsConfirmationAndCarriedMask) {
+  const cv::Size sizes[] = {{96, 72}, {320, 240}, {33, 17}, {16, 16}, {7, 100}, {5, 5},
+                            {2, 2},   {1, 1}};
+  for (const cv::Size size : sizes) {
+    const std::string what = std::to_string(size.width) + "x" + std::to_string(size.height);
+    const cv::Mat previous = test::greyTexture(size, 21);
+    cv::Mat grey;
+    cv::warpAffine(previous, grey, cv::Matx23d(1, 0, 1.3, 0, 1, -0.6), size, cv::INTER_LINEAR,
+                   cv::BORDER_REFLECT);
+    grey(cv::Rect(0, 0, (size.width + 1) / 2, (size.height + 1) / 2)) += 9;  // changes no map explains
+    cv::Mat mask = test::greyTexture(size, 22) > 128;
+    for (const float reach : {1.5f, 12.f}) {
+      const cv::Mat truth(size, CV_32FC2, cv::Scalar(1.3, -0.6));
+      cv::Mat flow_map, camera_map;
+      flowMap(truth + randomFlow(size, reach, 23), &flow_map);
+      cameraMap(cv::Matx33d(1.02, -0.03, 1.1, 0.03, 1.01, -0.4, 0, 0, 1), size, &camera_map);
+      expectOpenCvsConfirmation(grey, previous, flow_map, camera_map,
+                                what + " reach " + std::to_string(reach));
+      expectOpenCvsCarriedMask(mask, flow_map, what + " reach " + std::to_string(reach));
+    }
+  }
+}
+
+// Another margin changes the division, not the agreement; an identity camera (a still camera's
+// fit, or its fallback) too.
+TEST(PhotometricCheck, GivesOpenCvsConfirmationWithOtherMarginsAndAStillCamera) {
+  const cv::Size size(80, 60);
+  const cv::Mat previous = test::greyTexture(size, 31);
+  const cv::Mat grey = test::greyTexture(size, 32);
+  cv::Mat flow_map, camera_map;
+  flowMap(randomFlow(size, 4.f, 33), &flow_map);
+  cameraMap(cv::Matx33d::eye(), size, &camera_map);
+  for (const double margin : {0.01, 0.37, 1.0, 3.0, 100.0}) {
+    Params params;
+    params.photometric_margin = margin;
+    cv::Mat ours;
+    PhotometricCheck().confirm(grey, previous, flow_map, camera_map, params, &ours);
+    EXPECT_EQ(cv::countNonZero(ours != openCvConfirmation(grey, previous, flow_map, camera_map,
+                                                          params)),
+              0)
+        << "margin " << margin;
+  }
+}
+
+// DAVIS frames at the working size, their flow as DenseFlow finds it, the camera a homography
+// near the pair's motion, the previous frame's mask a thresholded frame; one check object over
+// the pairs, as the pipeline keeps it.
+TEST(PhotometricCheck, GivesOpenCvsConfirmationAndCarriedMaskOnDavisPairs) {
+  const std::string folder = test::davisSequence("dog");
+  if (folder.empty()) GTEST_SKIP() << "no DAVIS data (set MOVSEG_DATA)";
+  std::vector<std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(folder + "/frames")) {
+    files.push_back(entry.path().string());
+  }
+  std::sort(files.begin(), files.end());
+  files.resize(std::min<size_t>(files.size(), 5));
+  DenseFlow dense(Params().flow_finest_scale);
+  PhotometricCheck check;
+  cv::Mat previous, flows[2], flow_map, camera_map;  // two flows in flight, as DenseFlow asks
+  cameraMap(cv::Matx33d(1.01, 0.01, -2.5, -0.01, 1.01, 0.8, 1e-5, -2e-5, 1), {320, 240},
+            &camera_map);
+  for (size_t t = 0; t < files.size(); ++t) {
+    cv::Mat grey = cv::imread(files[t], cv::IMREAD_GRAYSCALE);
+    ASSERT_FALSE(grey.empty()) << files[t];
+    cv::resize(grey, grey, {320, 240}, 0, 0, cv::INTER_AREA);
+    dense.next(grey, &flows[t % 2]);
+    if (!flows[t % 2].empty()) {
+      flowMap(flows[t % 2], &flow_map);
+      cv::Mat ours;
+      check.confirm(grey, previous, flow_map, camera_map, Params(), &ours);
+      EXPECT_EQ(cv::countNonZero(ours != openCvConfirmation(grey, previous, flow_map, camera_map,
+                                                            Params())),
+                0)
+          << files[t];
+      expectOpenCvsCarriedMask(previous > 100, flow_map, files[t]);
+    }
+    previous = grey;
+  }
 }
 
 TEST(MotionEvidence, ConfirmationScalesOnlyEvidenceForMotion) {
