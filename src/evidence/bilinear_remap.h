@@ -30,6 +30,11 @@ class BilinearRemap {
   // `map`: CV_32FC2, of any size. `out` may not share data with the source or the map.
   void remap(const cv::Mat& map, cv::Mat* out) const;
 
+  // remap() of two sources of one size through one map in one pass: each point's place and
+  // weights are worked out once for both.
+  static void remapBoth(const BilinearRemap& first, const BilinearRemap& second,
+                        const cv::Mat& map, cv::Mat* first_out, cv::Mat* second_out);
+
  private:
   cv::Size size_;
   cv::Mat bordered_;  // the image with its border

@@ -40,12 +40,10 @@ void motionEvidence(const cv::Mat& residual, float scale, const Params& params, 
 
 namespace {
 
-// The previous frame (`previous`, set as the source) brought through `map`, its absolute
-// difference to `grey`, averaged over the 5x5 patch the two explanations are compared over (as
-// the texture measure's): the values of cv::remap, cv::absdiff and cv::blur.
-void patchError(const cv::Mat& grey, const BilinearRemap& previous, const cv::Mat& map,
-                BoxMean5* patch_mean, cv::Mat* warped, cv::Mat* error) {
-  previous.remap(map, warped);
+// The previous frame brought to the current one (`warped`), its absolute difference to `grey`
+// (in place), averaged over the 5x5 patch the two explanations are compared over (as the texture
+// measure's): the values of cv::absdiff and cv::blur.
+void patchError(const cv::Mat& grey, cv::Mat* warped, BoxMean5* patch_mean, cv::Mat* error) {
   cv::absdiff(grey, *warped, *warped);
   patch_mean->apply(*warped, error);  // 8-bit: rounded, as fine as noise
 }
@@ -62,12 +60,23 @@ int median8(const cv::Mat& image) {
 
 }  // namespace
 
-void PhotometricCheck::confirm(const cv::Mat& grey, const cv::Mat& previous_grey,
-                               const cv::Mat& flow_map, const cv::Mat& camera_map,
-                               const Params& params, cv::Mat* confirmation) {
+void PhotometricCheck::followFlow(const cv::Mat& previous_grey, const cv::Mat& previous_mask,
+                                  const cv::Mat& flow_map, cv::Mat* carried) {
   previous_.setSource(previous_grey, cv::BORDER_REPLICATE);
-  patchError(grey, previous_, flow_map, &patch_mean_, &by_flow_, &flow_error_);
-  patchError(grey, previous_, camera_map, &patch_mean_, &by_camera_, &camera_error_);
+  if (previous_mask.empty()) {
+    carried->release();
+    previous_.remap(flow_map, &by_flow_);
+    return;
+  }
+  previous_mask_.setSource(previous_mask, cv::BORDER_CONSTANT);
+  BilinearRemap::remapBoth(previous_, previous_mask_, flow_map, &by_flow_, carried);
+}
+
+void PhotometricCheck::confirm(const cv::Mat& grey, const cv::Mat& camera_map,
+                               const Params& params, cv::Mat* confirmation) {
+  previous_.remap(camera_map, &by_camera_);
+  patchError(grey, &by_flow_, &patch_mean_, &flow_error_);
+  patchError(grey, &by_camera_, &patch_mean_, &camera_error_);
   // One grey level at least: an 8-bit difference cannot resolve less.
   const float margin = static_cast<float>(params.photometric_margin) *
                        static_cast<float>(std::max(median8(camera_error_), 1));
@@ -91,12 +100,6 @@ void confirmMotion(const cv::Mat& confirmation, cv::Mat* evidence) {
     float* e = evidence->ptr<float>(y);
     for (int x = 0; x < w; ++x) e[x] = std::max(e[x], 0.f) * c[x] + std::min(e[x], 0.f);
   }
-}
-
-void carryMask(const cv::Mat& previous_mask, const cv::Mat& flow_map, cv::Mat* carried) {
-  BilinearRemap remap;
-  remap.setSource(previous_mask, cv::BORDER_CONSTANT);
-  remap.remap(flow_map, carried);
 }
 
 namespace {

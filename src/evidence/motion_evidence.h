@@ -28,14 +28,26 @@ void motionEvidence(const cv::Mat& residual, float scale, const Params& params, 
 // mean absolute difference over a patch; the confirmation is how much the flow's is smaller, in
 // units of `photometric_margin` times the frame's median difference under the camera (its
 // noise, blur and gain change), clipped to [0, 1].
+// Two steps: the camera's fit needs the previous mask carried by the flow, so the previous frame
+// is brought through the flow with it, in one pass over the flow's map, before the camera is
+// known; the frame is compared once the camera's map is made.
 class PhotometricCheck {
  public:
-  // `grey`, `previous_grey`: CV_8U; the maps as flowMap() and cameraMap() make them.
-  void confirm(const cv::Mat& grey, const cv::Mat& previous_grey, const cv::Mat& flow_map,
-               const cv::Mat& camera_map, const Params& params, cv::Mat* confirmation);
+  // The previous frame (`previous_grey`, CV_8U) and its mask (`previous_mask`, CV_8U 0/255, of
+  // the same size; may be empty) brought to the current frame through the flow's map
+  // (flowMap()). `carried`: the mask interpolated (CV_8U), 0 where the flow leaves the previous
+  // frame; empty without a mask.
+  void followFlow(const cv::Mat& previous_grey, const cv::Mat& previous_mask,
+                  const cv::Mat& flow_map, cv::Mat* carried);
+
+  // The pair followFlow() was last given: `grey` (CV_8U) the current frame, the camera's map as
+  // cameraMap() makes it. `confirmation`: CV_32F.
+  void confirm(const cv::Mat& grey, const cv::Mat& camera_map, const Params& params,
+               cv::Mat* confirmation);
 
  private:
-  BilinearRemap previous_;  // the previous grey frame, its border replicated
+  BilinearRemap previous_;       // the previous grey frame, its border replicated
+  BilinearRemap previous_mask_;  // the previous mask, 0 around it
   BoxMean5 patch_mean_;
   cv::Mat by_flow_, by_camera_, flow_error_, camera_error_;
 };
@@ -43,13 +55,9 @@ class PhotometricCheck {
 // Positive evidence scaled by the confirmation (CV_32F, [0, 1]); negative evidence is kept.
 void confirmMotion(const cv::Mat& confirmation, cv::Mat* evidence);
 
-// The previous frame's mask (CV_8U 0/255) carried to the current frame through the flow's map
-// (flowMap()), interpolated (CV_8U); where the flow leaves the previous frame, 0.
-void carryMask(const cv::Mat& previous_mask, const cv::Mat& flow_map, cv::Mat* carried);
-
 // A pixel is uncovered when the previous frame's mover hid what the camera puts there (the
 // previous mask, CV_8U 0/255, at the nearest pixel to `camera_map`'s, above half) while its flow
-// does not lead back into the mover (`carried`, carryMask() through flowMap(), under half).
+// does not lead back into the mover (`carried`, as PhotometricCheck::followFlow() carries it, under half).
 // There the photometric check compares the frame with the mover that hid the background: the
 // camera cannot explain the pixel, and a flow that DIS smeared from the mover, taking it to
 // background further back, can. The previous frame holds nothing to confirm its motion with, so

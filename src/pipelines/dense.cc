@@ -156,7 +156,7 @@ class DensePipeline : public Pipeline {
     if (a.first_frame || a.flow.empty()) return forget(a.bgr.size());
     Clock::time_point start = Clock::now();
     cv::Mat carried, evidence;
-    if (!mask_.empty()) carryMask(mask_, a.flow_map, &carried);
+    photometric_.followFlow(previous_.grey, mask_, a.flow_map, &carried);
     FlowCamera camera = fitFlowCamera(a.flow, a.samples, carried, params_, rng_,
                                       last_model_ ? &*last_model_ : nullptr);
     if (!camera.fallback) last_model_ = camera.model;
@@ -172,7 +172,7 @@ class DensePipeline : public Pipeline {
     start = Clock::now();
     diag.scene_cut = isSceneCutUnderCamera(a.bgr, previous_.bgr, camera_map_);
     if (diag.scene_cut) return forget(a.bgr.size());
-    photometric_.confirm(a.grey, previous_.grey, a.flow_map, camera_map_, params_, &confirmation_);
+    photometric_.confirm(a.grey, camera_map_, params_, &confirmation_);
     const float scale = residualScale(unconfirmedResiduals(camera, confirmation_), params_);
     diag.residual_scale = scale;
     motionEvidence(residual_, scale, params_, &evidence);

@@ -223,6 +223,33 @@ TEST(BilinearRemap, ASourceOfAnotherSizeReplacesTheLast) {
   }
 }
 
+// Two sources of one size through one map in one pass, each with its own border: each gets what
+// cv::remap gives it alone. Sources of different sizes are refused.
+TEST(BilinearRemap, TwoSourcesThroughOneMapGetOpenCvsRemaps) {
+  for (const cv::Size size : {cv::Size(96, 72), cv::Size(13, 5), cv::Size(1, 1)}) {
+    const std::string what = std::to_string(size.width) + "x" + std::to_string(size.height);
+    const cv::Mat grey = randomImage(size, 1), mask = blackAndWhite(size, 2);
+    const cv::Mat map = randomMap(size, 8.f, 3);
+    BilinearRemap first, second;
+    first.setSource(grey, cv::BORDER_REPLICATE);
+    second.setSource(mask, cv::BORDER_CONSTANT);
+    cv::Mat first_out, second_out, opencv;
+    BilinearRemap::remapBoth(first, second, map, &first_out, &second_out);
+    cv::remap(grey, opencv, map, cv::noArray(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+    expectIdentical(first_out, opencv, map, what + " first");
+    cv::remap(mask, opencv, map, cv::noArray(), cv::INTER_LINEAR, cv::BORDER_CONSTANT,
+              cv::Scalar(0));
+    expectIdentical(second_out, opencv, map, what + " second");
+  }
+  BilinearRemap first, second;
+  first.setSource(randomImage({20, 10}, 1), cv::BORDER_REPLICATE);
+  second.setSource(randomImage({10, 20}, 1), cv::BORDER_REPLICATE);
+  cv::Mat first_out, second_out;
+  EXPECT_THROW(BilinearRemap::remapBoth(first, second, randomMap({20, 10}, 1.f, 1), &first_out,
+                                        &second_out),
+               cv::Exception);
+}
+
 // DAVIS frames at the working size through the flow DenseFlow finds between them (the previous
 // frame, as the photometric check warps it) and a thresholded frame standing for a mask (as the
 // mask is carried).

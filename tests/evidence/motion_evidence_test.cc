@@ -22,6 +22,25 @@ cv::Mat uniformFlow(cv::Size size, cv::Vec2f motion) {
   return cv::Mat(size, CV_32FC2, cv::Scalar(motion[0], motion[1]));
 }
 
+// The check of a pair without a previous mask.
+cv::Mat confirmation(const cv::Mat& grey, const cv::Mat& previous, const cv::Mat& flow_map,
+                     const cv::Mat& camera_map, const Params& params = Params()) {
+  PhotometricCheck check;
+  cv::Mat carried, confirmed;
+  check.followFlow(previous, cv::Mat(), flow_map, &carried);
+  check.confirm(grey, camera_map, params, &confirmed);
+  return confirmed;
+}
+
+// The previous mask carried as the pipeline carries it, with the previous frame (flat here).
+cv::Mat carriedMask(const cv::Mat& previous_mask, const cv::Mat& flow_map) {
+  PhotometricCheck check;
+  cv::Mat carried;
+  check.followFlow(cv::Mat(previous_mask.size(), CV_8U, cv::Scalar(128)), previous_mask, flow_map,
+                   &carried);
+  return carried;
+}
+
 // A textured square moved 3 px right over a still textured background, the flow exact: the
 // square is confirmed, the background is not.
 TEST(PhotometricCheck, ConfirmsAMovedTexturedSquareAndNotTheStillBackground) {
@@ -35,15 +54,14 @@ TEST(PhotometricCheck, ConfirmsAMovedTexturedSquareAndNotTheStillBackground) {
   cv::Mat flow = uniformFlow(size, {0, 0});
   flow(after).setTo(cv::Scalar(-3, 0));  // current(p) came from previous(p - 3)
 
-  cv::Mat flow_map, camera_map, confirmation;
+  cv::Mat flow_map, camera_map;
   flowMap(flow, &flow_map);
   cameraMap(cv::Matx33d::eye(), size, &camera_map);
-  PhotometricCheck check;
-  check.confirm(current, previous, flow_map, camera_map, Params(), &confirmation);
+  const cv::Mat confirmed = confirmation(current, previous, flow_map, camera_map);
 
   const cv::Rect inside(38, 36, 18, 18), far(0, 70, 96, 26);
-  EXPECT_GT(cv::mean(confirmation(inside))[0], 0.9);
-  EXPECT_LT(cv::mean(confirmation(far))[0], 0.05);
+  EXPECT_GT(cv::mean(confirmed(inside))[0], 0.9);
+  EXPECT_LT(cv::mean(confirmed(far))[0], 0.05);
 }
 
 // A flat frame explains itself under any motion: a residual there, however large, is the flow
@@ -51,12 +69,10 @@ TEST(PhotometricCheck, ConfirmsAMovedTexturedSquareAndNotTheStillBackground) {
 TEST(PhotometricCheck, FlatRegionsAreNeverConfirmed) {
   const cv::Size size(64, 48);
   const cv::Mat flat(size, CV_8U, cv::Scalar(120));
-  cv::Mat flow_map, camera_map, confirmation;
+  cv::Mat flow_map, camera_map;
   flowMap(uniformFlow(size, {5, -4}), &flow_map);
   cameraMap(cv::Matx33d::eye(), size, &camera_map);
-  PhotometricCheck check;
-  check.confirm(flat, flat, flow_map, camera_map, Params(), &confirmation);
-  EXPECT_EQ(cv::countNonZero(confirmation), 0);
+  EXPECT_EQ(cv::countNonZero(confirmation(flat, flat, flow_map, camera_map)), 0);
 }
 
 // The confirmation as OpenCV's functions make it: the previous frame through each map by
@@ -86,31 +102,32 @@ cv::Mat openCvConfirmation(const cv::Mat& grey, const cv::Mat& previous, const c
   return confirmation;
 }
 
-// Bit for bit, and not trivially: some pixels confirmed in part.
-void expectOpenCvsConfirmation(const cv::Mat& grey, const cv::Mat& previous,
-                               const cv::Mat& flow_map, const cv::Mat& camera_map,
-                               const std::string& what, const Params& params = Params()) {
-  PhotometricCheck check;
-  cv::Mat ours;
-  check.confirm(grey, previous, flow_map, camera_map, params, &ours);
-  const cv::Mat opencv = openCvConfirmation(grey, previous, flow_map, camera_map, params);
+// The confirmation and the carried mask against OpenCV's, bit for bit, and not trivially (some
+// pixels confirmed in part); the confirmation the same without a mask, when nothing is carried.
+void expectOpenCvsResults(const cv::Mat& grey, const cv::Mat& previous, const cv::Mat& mask,
+                          const cv::Mat& flow_map, const cv::Mat& camera_map,
+                          const std::string& what, PhotometricCheck* check) {
+  cv::Mat carried, ours;
+  check->followFlow(previous, mask, flow_map, &carried);
+  check->confirm(grey, camera_map, Params(), &ours);
+  const cv::Mat opencv = openCvConfirmation(grey, previous, flow_map, camera_map, Params());
   ASSERT_EQ(ours.size(), opencv.size()) << what;
   ASSERT_EQ(ours.type(), CV_32F) << what;
   EXPECT_EQ(cv::countNonZero(ours != opencv), 0) << what;
   if (grey.total() >= 100) {
     EXPECT_GT(cv::countNonZero((ours > 0) & (ours < 1)), 0) << what << ": nothing confirmed in part";
   }
-}
-
-void expectOpenCvsCarriedMask(const cv::Mat& mask, const cv::Mat& flow_map,
-                              const std::string& what) {
-  cv::Mat ours, opencv;
-  carryMask(mask, flow_map, &ours);
-  cv::remap(mask, opencv, flow_map, cv::noArray(), cv::INTER_LINEAR, cv::BORDER_CONSTANT,
+  cv::Mat opencv_carried;
+  cv::remap(mask, opencv_carried, flow_map, cv::noArray(), cv::INTER_LINEAR, cv::BORDER_CONSTANT,
             cv::Scalar(0));
-  ASSERT_EQ(ours.size(), opencv.size()) << what;
-  ASSERT_EQ(ours.type(), opencv.type()) << what;
-  EXPECT_EQ(cv::countNonZero(ours != opencv), 0) << what;
+  ASSERT_EQ(carried.size(), opencv_carried.size()) << what;
+  ASSERT_EQ(carried.type(), CV_8U) << what;
+  EXPECT_EQ(cv::countNonZero(carried != opencv_carried), 0) << what;
+
+  check->followFlow(previous, cv::Mat(), flow_map, &carried);
+  check->confirm(grey, camera_map, Params(), &ours);
+  EXPECT_TRUE(carried.empty()) << what;
+  EXPECT_EQ(cv::countNonZero(ours != opencv), 0) << what << " without a mask";
 }
 
 cv::Mat randomFlow(cv::Size size, float reach, uint64 seed) {
@@ -139,9 +156,9 @@ TEST(PhotometricCheck, GivesOpenCvsConfirmationAndCarriedMask) {
       cv::Mat flow_map, camera_map;
       flowMap(truth + randomFlow(size, reach, 23), &flow_map);
       cameraMap(cv::Matx33d(1.02, -0.03, 1.1, 0.03, 1.01, -0.4, 0, 0, 1), size, &camera_map);
-      expectOpenCvsConfirmation(grey, previous, flow_map, camera_map,
-                                what + " reach " + std::to_string(reach));
-      expectOpenCvsCarriedMask(mask, flow_map, what + " reach " + std::to_string(reach));
+      PhotometricCheck check;
+      expectOpenCvsResults(grey, previous, mask, flow_map, camera_map,
+                           what + " reach " + std::to_string(reach), &check);
     }
   }
 }
@@ -158,10 +175,8 @@ TEST(PhotometricCheck, GivesOpenCvsConfirmationWithOtherMarginsAndAStillCamera) 
   for (const double margin : {0.01, 0.37, 1.0, 3.0, 100.0}) {
     Params params;
     params.photometric_margin = margin;
-    cv::Mat ours;
-    PhotometricCheck().confirm(grey, previous, flow_map, camera_map, params, &ours);
-    EXPECT_EQ(cv::countNonZero(ours != openCvConfirmation(grey, previous, flow_map, camera_map,
-                                                          params)),
+    EXPECT_EQ(cv::countNonZero(confirmation(grey, previous, flow_map, camera_map, params) !=
+                               openCvConfirmation(grey, previous, flow_map, camera_map, params)),
               0)
         << "margin " << margin;
   }
@@ -191,13 +206,7 @@ TEST(PhotometricCheck, GivesOpenCvsConfirmationAndCarriedMaskOnDavisPairs) {
     dense.next(grey, &flows[t % 2]);
     if (!flows[t % 2].empty()) {
       flowMap(flows[t % 2], &flow_map);
-      cv::Mat ours;
-      check.confirm(grey, previous, flow_map, camera_map, Params(), &ours);
-      EXPECT_EQ(cv::countNonZero(ours != openCvConfirmation(grey, previous, flow_map, camera_map,
-                                                            Params())),
-                0)
-          << files[t];
-      expectOpenCvsCarriedMask(previous > 100, flow_map, files[t]);
+      expectOpenCvsResults(grey, previous, previous > 100, flow_map, camera_map, files[t], &check);
     }
     previous = grey;
   }
@@ -225,9 +234,9 @@ TEST(MotionEvidence, ScaleIsTheUpperQuantileWithAFloorAtFiveMedians) {
 TEST(MotionEvidence, TheCarriedMaskFollowsTheFlow) {
   cv::Mat mask(40, 40, CV_8U, cv::Scalar(0));
   mask(cv::Rect(10, 10, 8, 8)).setTo(255);
-  cv::Mat flow_map, carried;
+  cv::Mat flow_map;
   flowMap(uniformFlow(mask.size(), {-4, -2}), &flow_map);  // moved by (+4, +2)
-  carryMask(mask, flow_map, &carried);
+  const cv::Mat carried = carriedMask(mask, flow_map);
   EXPECT_EQ(cv::countNonZero(carried(cv::Rect(14, 12, 8, 8)) == 255), 64);
   EXPECT_EQ(cv::countNonZero(carried), 64);
 }
@@ -242,10 +251,10 @@ TEST(MotionEvidence, PositiveEvidenceIsDroppedWhereTheMoverUncoveredTheBackgroun
   previous_mask.colRange(30, 60).setTo(255);
   cv::Mat flow = uniformFlow(size, {0, 0});
   flow.colRange(25, 63).setTo(cv::Scalar(-3, 0));  // the mover, now 33-62, and its smear
-  cv::Mat flow_map, camera_map, carried;
+  cv::Mat flow_map, camera_map;
   flowMap(flow, &flow_map);
   cameraMap(cv::Matx33d::eye(), size, &camera_map);
-  carryMask(previous_mask, flow_map, &carried);
+  const cv::Mat carried = carriedMask(previous_mask, flow_map);
   cv::Mat evidence(size, CV_32F, cv::Scalar(2));
   evidence.at<float>(5, 31) = -1;
   dropUncovered(carried, previous_mask, camera_map, &evidence);
