@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include <opencv2/core/hal/intrin.hpp>
+
 #include "core/quantile.h"
 #include "motion/estimators.h"
 #include "motion/model.h"
@@ -126,14 +128,19 @@ std::optional<cv::Vec3d> findEpipole(const FlowCamera& camera, cv::Size size,
 
 }  // namespace
 
-float minEigenValueAt(const cv::Mat& grey, cv::Point p) {
-  constexpr int kWindow = 5;
-  // cornerMinEigenVal's normalisation: Sobel's weight (4), the window side, 8-bit range. The
-  // sums of products of integer derivatives are exact; the scale comes last.
-  constexpr double kScale = 1.0 / (4 * kWindow * 255.0);
-  // Reflected as OpenCV reflects the derivative images: a window pixel outside the frame takes
-  // the derivatives of its mirror image inside, whose 3x3 neighbourhood is reflected in turn.
-  // Row and column indices are worked out once per sample, not once per derivative.
+namespace {
+
+// minEigenValueAt's window and its sums of products of 3x3 Sobel derivatives (exact integers).
+constexpr int kWindow = 5;
+struct StructureSums {
+  std::int64_t xx = 0, xy = 0, yy = 0;
+};
+
+// The sums where the window reaches the frame's border. Reflected as OpenCV reflects the
+// derivative images: a window pixel outside the frame takes the derivatives of its mirror image
+// inside, whose 3x3 neighbourhood is reflected in turn. Row and column indices are worked out
+// once per sample, not once per derivative.
+StructureSums reflectedStructureSums(const cv::Mat& grey, cv::Point p) {
   const uchar* rows[kWindow][3];
   int columns[kWindow][3];
   for (int j = 0; j < kWindow; ++j) {
@@ -144,7 +151,7 @@ float minEigenValueAt(const cv::Mat& grey, cv::Point p) {
       columns[j][k] = reflected(x + k - 1, grey.cols);
     }
   }
-  std::int64_t xx = 0, xy = 0, yy = 0;
+  StructureSums sums;
   for (int j = 0; j < kWindow; ++j) {
     const uchar* const* r = rows[j];
     for (int i = 0; i < kWindow; ++i) {
@@ -153,14 +160,62 @@ float minEigenValueAt(const cv::Mat& grey, cv::Point p) {
                      (r[2][c[2]] - r[2][c[0]]);
       const int dy = (r[2][c[0]] - r[0][c[0]]) + 2 * (r[2][c[1]] - r[0][c[1]]) +
                      (r[2][c[2]] - r[0][c[2]]);
-      xx += dx * dx;
-      xy += dx * dy;
-      yy += dy * dy;
+      sums.xx += dx * dx;
+      sums.xy += dx * dy;
+      sums.yy += dy * dy;
     }
   }
-  const double a = static_cast<double>(xx) * kScale * kScale / 2;
-  const double b = static_cast<double>(xy) * kScale * kScale;
-  const double c = static_cast<double>(yy) * kScale * kScale / 2;
+  return sums;
+}
+
+// Whether the sample's window and the derivatives' neighbourhoods are inside the frame, with one
+// more column on the left for insideStructureSums' loads of eight pixels.
+bool insideFrame(const cv::Mat& grey, cv::Point p) {
+  const int reach = kWindow / 2 + 1;
+  return p.x >= reach + 1 && p.x + reach < grey.cols && p.y >= reach && p.y + reach < grey.rows;
+}
+
+// The same sums inside the frame, the window's five columns in eight 16-bit lanes: each of the
+// seven rows that the window's derivatives read is loaded once (columns x - 4 to x + 3) and
+// gives its difference across (x + 1 - (x - 1)) and its smoothing across (1 2 1) at the five
+// columns, which the rows below combine into Sobel's derivatives. Every value fits its lanes:
+// derivatives within +-1020, a window's sums of products under 2^31 (25 x 1020^2).
+StructureSums insideStructureSums(const cv::Mat& grey, cv::Point p) {
+  constexpr int kRows = kWindow + 2;
+  cv::v_int16x8 across[kRows], smoothed[kRows];
+  for (int k = 0; k < kRows; ++k) {
+    const uchar* row = grey.ptr<uchar>(p.y - kRows / 2 + k) + p.x - kWindow / 2 - 2;
+    const auto pixels = cv::v_reinterpret_as_s16(cv::v_load_expand(row));
+    const cv::v_int16x8 left = cv::v_rotate_right<1>(pixels);  // lane i: column x - 3 + i
+    const cv::v_int16x8 centre = cv::v_rotate_right<2>(pixels);
+    const cv::v_int16x8 right = cv::v_rotate_right<3>(pixels);
+    across[k] = right - left;
+    smoothed[k] = left + centre + centre + right;
+  }
+  const cv::v_int16x8 window_columns(-1, -1, -1, -1, -1, 0, 0, 0);
+  cv::v_int32x4 xx = cv::v_setzero_s32(), xy = xx, yy = xx;
+  for (int j = 0; j < kWindow; ++j) {
+    const cv::v_int16x8 dx = across[j] + across[j + 1] + across[j + 1] + across[j + 2];
+    const cv::v_int16x8 dy = smoothed[j + 2] - smoothed[j];
+    const cv::v_int16x8 dx_window = dx & window_columns, dy_window = dy & window_columns;
+    xx += cv::v_dotprod(dx_window, dx);
+    xy += cv::v_dotprod(dx_window, dy);
+    yy += cv::v_dotprod(dy_window, dy);
+  }
+  return {cv::v_reduce_sum(xx), cv::v_reduce_sum(xy), cv::v_reduce_sum(yy)};
+}
+
+}  // namespace
+
+float minEigenValueAt(const cv::Mat& grey, cv::Point p) {
+  const StructureSums sums =
+      insideFrame(grey, p) ? insideStructureSums(grey, p) : reflectedStructureSums(grey, p);
+  // cornerMinEigenVal's normalisation: Sobel's weight (4), the window side, 8-bit range. The
+  // sums of products of integer derivatives are exact; the scale comes last.
+  constexpr double kScale = 1.0 / (4 * kWindow * 255.0);
+  const double a = static_cast<double>(sums.xx) * kScale * kScale / 2;
+  const double b = static_cast<double>(sums.xy) * kScale * kScale;
+  const double c = static_cast<double>(sums.yy) * kScale * kScale / 2;
   return static_cast<float>((a + c) - std::sqrt((a - c) * (a - c) + b * b));
 }
 

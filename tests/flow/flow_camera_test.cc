@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdint>
 #include <functional>
 
 #include <opencv2/imgproc.hpp>
@@ -24,6 +26,52 @@ TEST(FlowCamera, TextureAtAPixelIsCornerMinEigenValsThere) {
   for (const cv::Point p : {cv::Point(30, 20), cv::Point(0, 0), cv::Point(60, 46), cv::Point(1, 45),
                             cv::Point(59, 0), cv::Point(7, 13)}) {
     EXPECT_NEAR(minEigenValueAt(grey, p), expected.at<float>(p), 1e-5 * largest) << p;
+  }
+}
+
+// minEigenValueAt as it was written first, every derivative read through reflected indices:
+// the reference its faster reading inside the frame must match to the bit.
+float reflectedMinEigenValue(const cv::Mat& grey, cv::Point p) {
+  auto reflected = [](int v, int n) { return cv::borderInterpolate(v, n, cv::BORDER_REFLECT_101); };
+  std::int64_t xx = 0, xy = 0, yy = 0;
+  for (int j = -2; j <= 2; ++j) {
+    for (int i = -2; i <= 2; ++i) {
+      const int y = reflected(p.y + j, grey.rows), x = reflected(p.x + i, grey.cols);
+      auto at = [&](int dy, int dx) {
+        return int{grey.at<uchar>(reflected(y + dy, grey.rows), reflected(x + dx, grey.cols))};
+      };
+      const int gx = (at(-1, 1) - at(-1, -1)) + 2 * (at(0, 1) - at(0, -1)) + (at(1, 1) - at(1, -1));
+      const int gy = (at(1, -1) - at(-1, -1)) + 2 * (at(1, 0) - at(-1, 0)) + (at(1, 1) - at(-1, 1));
+      xx += gx * gx;
+      xy += gx * gy;
+      yy += gy * gy;
+    }
+  }
+  constexpr double kScale = 1.0 / (4 * 5 * 255.0);
+  const double a = static_cast<double>(xx) * kScale * kScale / 2;
+  const double b = static_cast<double>(xy) * kScale * kScale;
+  const double c = static_cast<double>(yy) * kScale * kScale / 2;
+  return static_cast<float>((a + c) - std::sqrt((a - c) * (a - c) + b * b));
+}
+
+// At every pixel of textures, of noise and of black-and-white noise (the largest derivatives),
+// on frames of several sizes: the same float as the reference, inside and on the borders.
+TEST(FlowCamera, TextureAtEveryPixelIsTheReflectedReadings) {
+  const cv::Size sizes[] = {{61, 47}, {8, 8}, {7, 9}, {16, 5}, {320, 240}};
+  for (const cv::Size size : sizes) {
+    cv::Mat noise(size, CV_8U), extremes(size, CV_8U);
+    cv::RNG(8).fill(noise, cv::RNG::UNIFORM, 0, 256);
+    cv::RNG(9).fill(extremes, cv::RNG::UNIFORM, 0, 2);
+    extremes *= 255;
+    for (const cv::Mat& grey : {test::greyTexture(size, 3), noise, extremes}) {
+      int differing = 0;
+      for (int y = 0; y < size.height; ++y) {
+        for (int x = 0; x < size.width; ++x) {
+          differing += minEigenValueAt(grey, {x, y}) != reflectedMinEigenValue(grey, {x, y});
+        }
+      }
+      EXPECT_EQ(differing, 0) << size;
+    }
   }
 }
 
