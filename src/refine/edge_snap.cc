@@ -26,7 +26,9 @@ cv::Rect outlineRegion(const cv::Mat& mask, int radius) {
 }
 
 // An index reflected into [0, n) as BORDER_REFLECT does (the edge pixel repeated).
-int reflected(int i, int n) { return cv::borderInterpolate(i, n, cv::BORDER_REFLECT); }
+int reflected(int i, int n) {
+  return i >= 0 && i < n ? i : cv::borderInterpolate(i, n, cv::BORDER_REFLECT);
+}
 
 // The mean over each pixel's window of a CV_32F image, the window reflected at the borders (as
 // cv::ximgproc::guidedFilter's). Column sums run down the image and each row's window sums
@@ -45,9 +47,10 @@ void windowMean(const cv::Mat& src, int radius, std::vector<float>* scratch, cv:
   }
   const float scale = 1.f / static_cast<float>(side * side);
   for (int y = 0;; ++y) {
+    // reflected(-d, w) and reflected(w - 1 + d, w), the image being wider than the radius.
     for (int d = 1; d <= radius; ++d) {
-      column[-d] = column[reflected(-d, w)];
-      column[w - 1 + d] = column[reflected(w - 1 + d, w)];
+      column[-d] = column[d - 1];
+      column[w - 1 + d] = column[w - d];
     }
     float* out = mean->ptr<float>(y);
     const float* first = column - radius;
