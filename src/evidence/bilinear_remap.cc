@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstring>
 
 #include <opencv2/core/hal/intrin.hpp>
 
@@ -86,15 +87,25 @@ EightTaps tapsOf(const Geometry& geometry, const float* points) {
   return taps;
 }
 
-// The 2x2 neighbourhoods at four offsets from `origin`, one 4-byte load each: the bytes p00 p10
-// p01 p11 per point (pYX, Y down). The offsets leave the vector two by two, in 64-bit halves
-// (cheaper than one by one).
+// Four bytes at `offset` pixels of the stacked image from `origin`: a 2x2 neighbourhood. Copied,
+// as the address is only as aligned as a short (cv::v_lut_pairs reads it as an int, which
+// UBSan refuses).
+int neighbourhoodAt(const short* origin, int offset) {
+  int bytes;
+  std::memcpy(&bytes, origin + offset, sizeof bytes);
+  return bytes;
+}
+
+// The 2x2 neighbourhoods at four offsets from `origin`: the bytes p00 p10 p01 p11 per point (pYX,
+// Y down). The offsets leave the vector two by two, in 64-bit halves (cheaper than one by one).
 v_uint8x16 neighbourhoods(const short* origin, const v_int32x4& offsets) {
   const uint64 low = cv::v_reinterpret_as_u64(offsets).get0();
   const uint64 high = cv::v_reinterpret_as_u64(cv::v_combine_high(offsets, offsets)).get0();
-  const int at[] = {static_cast<int>(low), static_cast<int>(low >> 32), static_cast<int>(high),
-                    static_cast<int>(high >> 32)};
-  return cv::v_reinterpret_as_u8(cv::v_lut_pairs(origin, at));
+  return cv::v_reinterpret_as_u8(v_int32x4(
+      neighbourhoodAt(origin, static_cast<int>(low)),
+      neighbourhoodAt(origin, static_cast<int>(low >> 32)),
+      neighbourhoodAt(origin, static_cast<int>(high)),
+      neighbourhoodAt(origin, static_cast<int>(high >> 32))));
 }
 
 // Four pixels interpolated from their neighbourhoods: the columns weighed along y, then the two
