@@ -1,5 +1,5 @@
 // cv::remap of an 8-bit image through a CV_32FC2 map with INTER_LINEAR, as OpenCV 4.6 computes
-// it, to the bit (tests/evidence/bilinear_remap_test.cc), for 40 % of its instructions. OpenCV
+// it, to the bit (tests/evidence/bilinear_remap_test.cc), for a third of its instructions. OpenCV
 // - rounds each coordinate to 1/32 pixel, cvRound(x * 32): its integer part saturated to a short,
 //   its 5-bit fraction kept;
 // - weighs the 2x2 pixels from there by a table of four shorts per pair of fractions (fx, fy):

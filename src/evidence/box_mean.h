@@ -1,11 +1,11 @@
 // cv::blur(image, mean, cv::Size(5, 5)) of an 8-bit image, as OpenCV 4.6 computes it, to the bit
-// (tests/evidence/box_mean_test.cc), for a third of its instructions. OpenCV sums the 5x5 window
-// in 16 bits, borders reflected (BORDER_REFLECT_101), and divides by 25 in fixed point,
-// ((sum + 13) * 335544) >> 23, which is the sum divided by 25 rounded to nearest for every sum of
-// 25 bytes (none is a tie). Here the window's column sums slide down a row at a time (the row
-// entering added, the one leaving taken away, 16 columns at once), five of them are added per
-// pixel, 8 at once, and the division is (sum + 12) * 41944 >> 20, the same rounded quotient, in
-// 16-bit lanes.
+// (tests/evidence/box_mean_test.cc), for about a quarter of its instructions. OpenCV sums the
+// 5x5 window in 16 bits, borders reflected (BORDER_REFLECT_101), and divides by 25 in fixed
+// point, ((sum + 13) * 335544) >> 23, which is the sum divided by 25 rounded to nearest for every
+// sum of 25 bytes (none is a tie). Here the window's column sums slide down a row at a time (the
+// row entering added, the one leaving taken away, 16 columns at once), five of them are added
+// per pixel, 8 at once, and the division is (sum + 12) * 41944 >> 20, the same rounded quotient,
+// in 16-bit lanes.
 #pragma once
 
 #include <vector>

@@ -96,10 +96,10 @@ double allocationsPerFrame(Method method) {
   return static_cast<double>(counter.count()) / static_cast<double>(frames.size() - kWarmUp);
 }
 
-// Not zero: measured 582 per frame, most of them inside OpenCV (filters and remaps;
-// docs/design.md, "Speed of dense"; 598 when the flow was OpenCV's DIS, whose calc() allocates;
-// 542 before the edge snap, whose opening builds an OpenCV filter engine per call). A guard
-// against new ones.
+// Not zero: measured 554 per frame, most of them inside OpenCV (filters; docs/design.md,
+// "Speed of dense"; 582 before the photometric check's own remaps and box means, 598 when the
+// flow was OpenCV's DIS, whose calc() allocates; 542 before the edge snap, whose opening builds
+// an OpenCV filter engine per call). A guard against new ones.
 TEST(Allocations, DenseStaysUnderItsMeasuredAllocationsPerFrame) {
   const double per_frame = allocationsPerFrame(Method::kDense);
   std::printf("dense: %.1f allocations per frame\n", per_frame);
