@@ -34,37 +34,43 @@ class ContrastWeight {
   std::array<float, kTabled> table_;
 };
 
-// Edge weights smoothness * exp(-beta |dC|^2) to the right and down (squaredColourSteps) of
-// 8-bit BGR.
-void contrastWeights(const cv::Mat& bgr, double smoothness, GridEnergy* energy) {
-  cv::Mat colour;
-  bgr.convertTo(colour, CV_32FC3);
-  const ContrastWeight weight(static_cast<float>(smoothness), squaredColourSteps(colour, energy));
-  const int w = bgr.cols, h = bgr.rows;
+// The size of the 2x2 blocks of an image of `size` (a last odd row or column is a block).
+cv::Size blocksOf(cv::Size size) { return scaledSize(size, (size.width + 1) / 2); }
+
+}  // namespace
+
+void blockContrast(const cv::Mat& bgr, double smoothness, BlockContrast* contrast) {
+  cv::Mat block_bgr, colour;
+  cv::resize(bgr, block_bgr, blocksOf(bgr.size()), 0, 0, cv::INTER_AREA);
+  block_bgr.convertTo(colour, CV_32FC3);
+  // Edge weights smoothness * exp(-beta |dC|^2) to the right and down (squaredColourSteps).
+  GridEnergy steps;
+  const ContrastWeight weight(static_cast<float>(smoothness), squaredColourSteps(colour, &steps));
+  const int w = colour.cols, h = colour.rows;
   for (int y = 0; y < h; ++y) {
-    float* right = energy->right.ptr<float>(y);
-    float* down = energy->down.ptr<float>(y);
+    float* right = steps.right.ptr<float>(y);
+    float* down = steps.down.ptr<float>(y);
     for (int x = 0; x < w; ++x) {
       if (x + 1 < w) right[x] = weight(right[x]);
       if (y + 1 < h) down[x] = weight(down[x]);
     }
   }
+  contrast->right = steps.right;
+  contrast->down = steps.down;
 }
 
-}  // namespace
-
-cv::Mat cutEvidence(const cv::Mat& evidence, const cv::Mat& bgr, double smoothness,
-                    GridMaxFlow* memory, int* nodes) {
-  const cv::Size blocks = scaledSize(bgr.size(), (bgr.cols + 1) / 2);
+cv::Mat cutEvidence(const cv::Mat& evidence, const BlockContrast& contrast, GridMaxFlow* memory,
+                    int* nodes) {
+  CV_Assert(contrast.right.size() == blocksOf(evidence.size()));
   GridEnergy energy;
-  cv::Mat block_evidence, block_bgr;
-  cv::resize(evidence, block_evidence, blocks, 0, 0, cv::INTER_AREA);
-  cv::resize(bgr, block_bgr, blocks, 0, 0, cv::INTER_AREA);
+  cv::Mat block_evidence;
+  cv::resize(evidence, block_evidence, contrast.right.size(), 0, 0, cv::INTER_AREA);
   energy.cost_bg = cv::max(block_evidence, 0.0);
   energy.cost_fg = cv::max(-block_evidence, 0.0);
-  contrastWeights(block_bgr, smoothness, &energy);
+  energy.right = contrast.right;
+  energy.down = contrast.down;
   const cv::Mat labels = memory->label(energy, decidedPixels(energy), nodes);
-  return upscaledMask(labels, bgr.size());
+  return upscaledMask(labels, evidence.size());
 }
 
 }  // namespace movseg

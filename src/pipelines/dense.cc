@@ -35,6 +35,7 @@ struct DenseAnalysis : Analysis {
   std::vector<GridSample> samples;  // where the camera is fitted
   cv::Mat flow;                     // to the previous frame; empty on a first frame
   cv::Mat flow_map;                 // where the flow takes each pixel (flowMap)
+  BlockContrast contrast;           // the cut's smoothness term
   double scale = 1;                 // bgr = the frame scaled by this
   cv::Size input_size;
   cv::Mat input_grey;  // at the input's size where that is larger: the edges the outline snaps to
@@ -137,6 +138,7 @@ class DensePipeline : public Pipeline {
       a.input_grey.release();
     }
     a.samples = gridSamples(a.grey, params_.flow_sample_step);
+    blockContrast(a.bgr, params_.smoothness, &a.contrast);
     a.prepare_ms = millisecondsSince(start);
     start = Clock::now();
     if (a.first_frame) flow_.reset();
@@ -194,7 +196,7 @@ class DensePipeline : public Pipeline {
     diag.classify_ms = millisecondsSince(start);
 
     start = Clock::now();
-    mask_ = cutEvidence(unary, a.bgr, params_.smoothness, &max_flow_, &diag.cut_nodes);
+    mask_ = cutEvidence(unary, a.contrast, &max_flow_, &diag.cut_nodes);
     const cv::Mat mask = edge_snap_.snap(mask_, a.grey, params_.edge_snap, a.input_grey);
     diag.cut_ms = millisecondsSince(start);
     debug.put("residual", [&] {  // mid-grey: as large as the background's residual in this pair
