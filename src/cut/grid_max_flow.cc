@@ -4,6 +4,7 @@
 #include <array>
 #include <climits>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace movseg {
@@ -45,14 +46,13 @@ class GridFlow {
         offset_{1, -1, state.cols + 2, -(state.cols + 2)} {
     nodes_.assign(static_cast<size_t>((state.cols + 2) * (state.rows + 2)), Node());
     orphans_.clear();
-    setCapacities(energy, state);
-    for (int i = 0; i < static_cast<int>(nodes_.size()); ++i) {
-      Node& n = nodes_[static_cast<size_t>(i)];
-      if (n.terminal == 0) continue;
-      n.parent = kTerminal;
-      n.tree = n.terminal < 0 ? kSinkTree : kSourceTree;
-      n.dist = 1;
-      enqueue(i);
+    for (int y = 0; y < state.rows; ++y) {
+      const uchar* s = state.ptr<uchar>(y);
+      // Only free pixels get a node: memchr skips the fixed runs, most of a banded grid.
+      for (auto* p = static_cast<const uchar*>(std::memchr(s, kFree, state.cols)); p != nullptr;
+           p = static_cast<const uchar*>(std::memchr(p + 1, kFree, s + state.cols - p - 1))) {
+        setCapacities(energy, state, static_cast<int>(p - s), y);
+      }
     }
   }
 
@@ -75,34 +75,35 @@ class GridFlow {
   Node& node(int i) { return nodes_[static_cast<size_t>(i)]; }
   const Node& node(int i) const { return nodes_[static_cast<size_t>(i)]; }
 
-  // Terminal capacities (cost_bg from the source, cost_fg to the sink, less what both share)
-  // and the edges between free pixels; an edge to a fixed pixel becomes terminal capacity.
-  void setCapacities(const GridEnergy& energy, const cv::Mat& state) {
-    for (int y = 0; y < state.rows; ++y) {
-      const float* fg = energy.cost_fg.ptr<float>(y);
-      const float* bg = energy.cost_bg.ptr<float>(y);
-      const float* right = energy.right.ptr<float>(y);
-      const float* down = energy.down.ptr<float>(y);
-      const uchar* s = state.ptr<uchar>(y);
-      const uchar* below = y + 1 < state.rows ? state.ptr<uchar>(y + 1) : nullptr;
-      Node* row = &node(index(0, y));
-      for (int x = 0; x < state.cols; ++x) {
-        if (s[x] == kFree) row[x].terminal += bg[x] - fg[x];
-        if (x + 1 < state.cols) link(s[x], s[x + 1], right[x], kRight, &row[x], &row[x + 1]);
-        if (below) link(s[x], below[x], down[x], kDown, &row[x], &row[x + width_]);
-      }
-    }
+  // The free pixel (x, y): its terminal capacity (cost_bg from the source, cost_fg to the sink,
+  // less what both share; an edge to a fixed pixel adds to it) and its edges to free pixels.
+  // The terminal sums its terms in raster order of the edges (up, left, own, right, down), the
+  // order a sweep over all edges would add them in. A node with a terminal capacity is active,
+  // the queue in raster order.
+  void setCapacities(const GridEnergy& energy, const cv::Mat& state, int x, int y) {
+    const int i = index(x, y);
+    Node& n = node(i);
+    const float* right = energy.right.ptr<float>(y);
+    const float* down = energy.down.ptr<float>(y);
+    const uchar* s = state.ptr<uchar>(y);
+    if (y > 0) link(state.ptr<uchar>(y - 1)[x], energy.down.ptr<float>(y - 1)[x], kUp, &n);
+    if (x > 0) link(s[x - 1], right[x - 1], kLeft, &n);
+    n.terminal += energy.cost_bg.ptr<float>(y)[x] - energy.cost_fg.ptr<float>(y)[x];
+    if (x + 1 < state.cols) link(s[x + 1], right[x], kRight, &n);
+    if (y + 1 < state.rows) link(state.ptr<uchar>(y + 1)[x], down[x], kDown, &n);
+    if (n.terminal == 0) return;
+    n.parent = kTerminal;
+    n.tree = n.terminal < 0 ? kSinkTree : kSourceTree;
+    n.dist = 1;
+    enqueue(i);
   }
 
-  // The edge from a to its neighbour b in direction d (states sa, sb).
-  static void link(uchar sa, uchar sb, float weight, Direction d, Node* a, Node* b) {
-    if (sa == kFree && sb == kFree) {
+  // The edge of weight `weight` from a free node to its neighbour in direction d (state sb).
+  static void link(uchar sb, float weight, Direction d, Node* a) {
+    if (sb == kFree) {
       a->cap[static_cast<size_t>(d)] = weight;
-      b->cap[static_cast<size_t>(d ^ 1)] = weight;
-    } else if (sa == kFree) {
+    } else {
       a->terminal += sb == kFixedForeground ? weight : -weight;
-    } else if (sb == kFree) {
-      b->terminal += sa == kFixedForeground ? weight : -weight;
     }
   }
 
