@@ -33,6 +33,24 @@ namespace {
 
 using Node = GridMaxFlow::Node;
 
+// Calls visit(x, y) for each kFree pixel of `state`, in raster order. memchr skips each run of
+// fixed pixels, most of a banded grid.
+template <typename Visit>
+void forEachFreePixel(const cv::Mat& state, Visit visit) {
+  const int width = state.cols;
+  for (int y = 0; y < state.rows; ++y) {
+    const uchar* s = state.ptr<uchar>(y);
+    for (int x = 0; x < width; ++x) {
+      if (s[x] != kFree) {
+        const void* next_free = std::memchr(s + x, kFree, static_cast<size_t>(width - x));
+        if (next_free == nullptr) break;
+        x = static_cast<int>(static_cast<const uchar*>(next_free) - s);
+      }
+      visit(x, y);
+    }
+  }
+}
+
 // The max-flow of one energy, on nodes and orphans that a GridMaxFlow keeps: built, run()
 // once, then read by onSourceSide(). The grid is padded by one node on every side (parent
 // kNone, no capacity), so that every node of the image has four neighbours to look at.
@@ -46,14 +64,7 @@ class GridFlow {
         offset_{1, -1, state.cols + 2, -(state.cols + 2)} {
     nodes_.assign(static_cast<size_t>((state.cols + 2) * (state.rows + 2)), Node());
     orphans_.clear();
-    for (int y = 0; y < state.rows; ++y) {
-      const uchar* s = state.ptr<uchar>(y);
-      // Only free pixels get a node: memchr skips the fixed runs, most of a banded grid.
-      for (auto* p = static_cast<const uchar*>(std::memchr(s, kFree, state.cols)); p != nullptr;
-           p = static_cast<const uchar*>(std::memchr(p + 1, kFree, s + state.cols - p - 1))) {
-        setCapacities(energy, state, static_cast<int>(p - s), y);
-      }
-    }
+    forEachFreePixel(state, [&](int x, int y) { setCapacities(energy, state, x, y); });
   }
 
   void run() {
@@ -311,19 +322,17 @@ cv::Mat GridMaxFlow::label(const GridEnergy& energy, const cv::Mat& state, int* 
   GridFlow flow(energy, state, &nodes_, &orphans_);
   flow.run();
   cv::Mat labels(state.size(), CV_8U);
-  *nodes = 0;
-  for (int y = 0; y < state.rows; ++y) {
+  const int width = state.cols;  // a local, which the byte stores cannot change: GCC vectorises
+  for (int y = 0; y < state.rows; ++y) {  // the fixed pixels' labels
     const uchar* s = state.ptr<uchar>(y);
     uchar* out = labels.ptr<uchar>(y);
-    for (int x = 0; x < state.cols; ++x) {
-      if (s[x] == kFree) {
-        ++*nodes;
-        out[x] = flow.onSourceSide(x, y) ? 255 : 0;
-      } else {
-        out[x] = s[x] == kFixedForeground ? 255 : 0;
-      }
-    }
+    for (int x = 0; x < width; ++x) out[x] = s[x] == kFixedForeground ? 255 : 0;
   }
+  *nodes = 0;
+  forEachFreePixel(state, [&](int x, int y) {
+    ++*nodes;
+    labels.at<uchar>(y, x) = flow.onSourceSide(x, y) ? 255 : 0;
+  });
   return labels;
 }
 
