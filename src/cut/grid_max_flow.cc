@@ -150,24 +150,27 @@ class GridFlow {
   int grow(int* from) {
     while (first_ != kEnd) {
       const int v = first_;
-      Node& nv = node(v);
+      const Node& nv = node(v);
       if (nv.parent != kNone) {
+        // v's own fields do not change in the loop: in locals, not read again after each store.
+        const std::uint8_t tree = nv.tree;
+        const int ts = nv.ts, dist = nv.dist + 1;
         for (int d = 0; d < 4; ++d) {
-          if (treeResidual(nv.tree, v, d) == 0) continue;
+          if (treeResidual(tree, v, d) == 0) continue;
           Node& nu = node(v + offset_[d]);
           if (nu.parent == kNone) {
-            nu.tree = nv.tree;
+            nu.tree = tree;
             nu.parent = static_cast<std::int8_t>(d ^ 1);
-            nu.ts = nv.ts;
-            nu.dist = nv.dist + 1;
+            nu.ts = ts;
+            nu.dist = dist;
             enqueue(v + offset_[d]);
-          } else if (nu.tree != nv.tree) {
+          } else if (nu.tree != tree) {
             *from = v;
             return d;
-          } else if (nu.dist > nv.dist + 1 && nu.ts <= nv.ts) {  // a shorter way to the root
+          } else if (nu.dist > dist && nu.ts <= ts) {  // a shorter way to the root
             nu.parent = static_cast<std::int8_t>(d ^ 1);
-            nu.ts = nv.ts;
-            nu.dist = nv.dist + 1;
+            nu.ts = ts;
+            nu.dist = dist;
           }
         }
       }
