@@ -76,15 +76,20 @@ FlowGraph freePixelGraph(const GridEnergy& energy, const cv::Mat& state, cv::Mat
 }
 
 // The block state: free when any of its pixels is free, else the label its pixels agree on
-// (fixed pixels of one block with both labels leave it free).
+// (fixed pixels of one block with both labels leave it free): the pixels' state when all four
+// agree, else kFree. A last odd row or column counts its pixels twice.
 cv::Mat blockState(const cv::Mat& state) {
-  cv::Mat blocks((state.rows + 1) / 2, (state.cols + 1) / 2, CV_8U, cv::Scalar(255));
-  for (int y = 0; y < state.rows; ++y) {
-    const uchar* s = state.ptr<uchar>(y);
-    uchar* b = blocks.ptr<uchar>(y / 2);
-    for (int x = 0; x < state.cols; ++x) {
-      uchar& block = b[x / 2];
-      block = block == 255 || block == s[x] ? s[x] : static_cast<uchar>(kFree);
+  cv::Mat blocks((state.rows + 1) / 2, (state.cols + 1) / 2, CV_8U);
+  const int last_x = state.cols - 1;
+  for (int by = 0; by < blocks.rows; ++by) {
+    const uchar* top = state.ptr<uchar>(2 * by);
+    const uchar* bottom = state.ptr<uchar>(std::min(2 * by + 1, state.rows - 1));
+    uchar* b = blocks.ptr<uchar>(by);
+    for (int bx = 0; bx < blocks.cols; ++bx) {
+      const int x0 = 2 * bx, x1 = std::min(x0 + 1, last_x);
+      const uchar v = top[x0];
+      const bool agree = (top[x1] == v) & (bottom[x0] == v) & (bottom[x1] == v);
+      b[bx] = agree ? v : static_cast<uchar>(kFree);
     }
   }
   return blocks;
