@@ -62,15 +62,16 @@ ColourGmm ColourGmm::fit(const std::vector<cv::Vec3f>& samples, int k) {
   for (size_t c = 0; c < count.size(); ++c) {
     if (count[c] == 0 || (enough && count[c] < kMinComponentSize)) continue;
     Component comp;
-    comp.log_weight = std::log(static_cast<double>(count[c]) / samples.size());
+    const double log_weight = std::log(static_cast<double>(count[c]) / samples.size());
     comp.mean = sum[c] / count[c];
-    comp.log_norm = 0;
+    double log_norm = 0;  // log of the Gaussian's normalising constant
     for (int d = 0; d < 3; ++d) {
       const double variance =
           std::max(kMinVariance, sum_sq[c][d] / count[c] - comp.mean[d] * comp.mean[d]);
       comp.inv_variance[d] = 1.0 / variance;
-      comp.log_norm -= 0.5 * (log_two_pi + std::log(variance));
+      log_norm -= 0.5 * (log_two_pi + std::log(variance));
     }
+    comp.log_scale = log_weight + log_norm;
     gmm.components_.push_back(comp);
   }
   return gmm;
@@ -78,21 +79,16 @@ ColourGmm ColourGmm::fit(const std::vector<cv::Vec3f>& samples, int k) {
 
 double ColourGmm::logLikelihood(const cv::Vec3f& colour) const {
   // log-sum-exp over components: far colours would underflow a direct sum to 0 for both models.
+  // Each term is worked out twice (for the largest, then for the sum), which costs less than
+  // keeping them in an allocated list.
   double best = -std::numeric_limits<double>::infinity();
-  std::vector<double> terms;
-  terms.reserve(components_.size());
-  for (const Component& comp : components_) {
-    double log_p = comp.log_weight + comp.log_norm;
-    for (int d = 0; d < 3; ++d) {
-      const double diff = colour[d] - comp.mean[d];
-      log_p -= 0.5 * diff * diff * comp.inv_variance[d];
-    }
-    terms.push_back(log_p);
-    best = std::max(best, log_p);
-  }
-  if (terms.empty()) return best;
+  for (const Component& comp : components_) best = std::max(best, comp.logDensity(colour));
+  if (components_.empty()) return best;
   double sum = 0;
-  for (double t : terms) sum += std::exp(t - best);
+  for (const Component& comp : components_) {
+    const double log_p = comp.logDensity(colour);
+    sum += log_p == best ? 1.0 : std::exp(log_p - best);  // exp(0) is 1: no call for the largest
+  }
   return best + std::log(sum);
 }
 

@@ -24,10 +24,19 @@ class ColourGmm {
 
  private:
   struct Component {
-    double log_weight;
+    double log_scale;  // log of the weight times the Gaussian's normalising constant
     cv::Vec3d mean;
     cv::Vec3d inv_variance;
-    double log_norm;  // log of the Gaussian's normalising constant
+
+    // log of the weighted density at `colour`.
+    double logDensity(const cv::Vec3f& colour) const {
+      double log_p = log_scale;
+      for (int d = 0; d < 3; ++d) {
+        const double diff = colour[d] - mean[d];
+        log_p -= 0.5 * diff * diff * inv_variance[d];
+      }
+      return log_p;
+    }
   };
   std::vector<Component> components_;
 };

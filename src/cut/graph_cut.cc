@@ -35,11 +35,15 @@ cv::Mat geodesicUnaries(const cv::Mat& d_fg, const cv::Mat& d_bg,
     float* rf = energy->cost_fg.ptr<float>(y);
     float* rb = energy->cost_bg.ptr<float>(y);
     float* u = confidence.ptr<float>(y);
+    // Distances are >= 0 (0 at the seeds, sums of positive steps elsewhere), so sum is 0 only
+    // where both are: dividing by 1 there gives eq. (10)'s 0 for u and both costs without a
+    // branch around the divisions, which GCC then vectorises.
     for (int x = 0; x < d_fg.cols; ++x) {
       const float df = f[x] * norm, db = b[x] * norm, sum = df + db;
-      u[x] = sum > 0.f ? (df - db) * (df - db) / sum : 0.f;  // eq. (10)
-      rf[x] = sum > 0.f ? u[x] * df / sum : 0.f;              // u * G_F, eq. (9)
-      rb[x] = sum > 0.f ? u[x] * db / sum : 0.f;
+      const float divisor = sum > 0.f ? sum : 1.f;
+      u[x] = (df - db) * (df - db) / divisor;  // eq. (10)
+      rf[x] = u[x] * df / divisor;             // u * G_F, eq. (9)
+      rb[x] = u[x] * db / divisor;
     }
   }
   for (const cv::Point& p : foreground) energy->cost_bg.at<float>(p) = kHardConstraint;  // eq. (8)
@@ -59,9 +63,13 @@ void pairwiseWeights(const cv::Mat& colour, const cv::Mat& confidence, double we
     const float* u_below = confidence.ptr<float>(std::min(y + 1, h - 1));
     float* right = energy->right.ptr<float>(y);
     float* down = energy->down.ptr<float>(y);
+    // Two loops without a branch, which GCC vectorises.
+    for (int x = 0; x + 1 < w; ++x) {
+      right[x] = lambda * (1 + 0.5f * (u[x] + u[x + 1])) / (1 + beta * right[x]);
+    }
+    if (y + 1 == h) continue;
     for (int x = 0; x < w; ++x) {
-      if (x + 1 < w) right[x] = lambda * (1 + 0.5f * (u[x] + u[x + 1])) / (1 + beta * right[x]);
-      if (y + 1 < h) down[x] = lambda * (1 + 0.5f * (u[x] + u_below[x])) / (1 + beta * down[x]);
+      down[x] = lambda * (1 + 0.5f * (u[x] + u_below[x])) / (1 + beta * down[x]);
     }
   }
 }

@@ -11,18 +11,25 @@ namespace movseg {
 cv::Mat decidedPixels(const GridEnergy& energy) {
   const int w = energy.cost_fg.cols, h = energy.cost_fg.rows;
   cv::Mat state(energy.cost_fg.size(), CV_8U);
+  // The first row and column have no edge above or to the left: weight 0, added as such so the
+  // sums stay those of the formula. With them out of the loop and the state made by arithmetic
+  // on the two comparisons (not by branches), GCC vectorises it.
+  const std::vector<float> none(static_cast<size_t>(w), 0.f);
   for (int y = 0; y < h; ++y) {
     const float* rf = energy.cost_fg.ptr<float>(y);
     const float* rb = energy.cost_bg.ptr<float>(y);
     const float* right = energy.right.ptr<float>(y);
     const float* down = energy.down.ptr<float>(y);
-    const float* up = y > 0 ? energy.down.ptr<float>(y - 1) : nullptr;
+    const float* up = y > 0 ? energy.down.ptr<float>(y - 1) : none.data();
     uchar* s = state.ptr<uchar>(y);
-    for (int x = 0; x < w; ++x) {
-      const float edges = right[x] + down[x] + (x > 0 ? right[x - 1] : 0.f) + (up ? up[x] : 0.f);
+    auto decide = [&](int x, float left) {
+      const float edges = right[x] + down[x] + left + up[x];
       const float prefer_fg = rb[x] - rf[x];
-      s[x] = prefer_fg > edges ? kFixedForeground : prefer_fg < -edges ? kFixedBackground : kFree;
-    }
+      const bool fg = prefer_fg > edges, bg = prefer_fg < -edges;  // fg wins if both (edges < 0)
+      s[x] = static_cast<uchar>(fg * kFixedForeground + (!fg & bg) * kFixedBackground);
+    };
+    if (w > 0) decide(0, 0.f);
+    for (int x = 1; x < w; ++x) decide(x, right[x - 1]);
   }
   return state;
 }
@@ -69,15 +76,20 @@ FlowGraph freePixelGraph(const GridEnergy& energy, const cv::Mat& state, cv::Mat
 }
 
 // The block state: free when any of its pixels is free, else the label its pixels agree on
-// (fixed pixels of one block with both labels leave it free).
+// (fixed pixels of one block with both labels leave it free): the pixels' state when all four
+// agree, else kFree. A last odd row or column counts its pixels twice.
 cv::Mat blockState(const cv::Mat& state) {
-  cv::Mat blocks((state.rows + 1) / 2, (state.cols + 1) / 2, CV_8U, cv::Scalar(255));
-  for (int y = 0; y < state.rows; ++y) {
-    const uchar* s = state.ptr<uchar>(y);
-    uchar* b = blocks.ptr<uchar>(y / 2);
-    for (int x = 0; x < state.cols; ++x) {
-      uchar& block = b[x / 2];
-      block = block == 255 || block == s[x] ? s[x] : static_cast<uchar>(kFree);
+  cv::Mat blocks((state.rows + 1) / 2, (state.cols + 1) / 2, CV_8U);
+  const int last_x = state.cols - 1;
+  for (int by = 0; by < blocks.rows; ++by) {
+    const uchar* top = state.ptr<uchar>(2 * by);
+    const uchar* bottom = state.ptr<uchar>(std::min(2 * by + 1, state.rows - 1));
+    uchar* b = blocks.ptr<uchar>(by);
+    for (int bx = 0; bx < blocks.cols; ++bx) {
+      const int x0 = 2 * bx, x1 = std::min(x0 + 1, last_x);
+      const uchar v = top[x0];
+      const bool agree = (top[x1] == v) & (bottom[x0] == v) & (bottom[x1] == v);
+      b[bx] = agree ? v : static_cast<uchar>(kFree);
     }
   }
   return blocks;
@@ -119,11 +131,17 @@ GridEnergy coarsened(const GridEnergy& energy) {
     float* b_right = blocks.right.ptr<float>(y / 2);
     float* b_down = blocks.down.ptr<float>(y / 2);
     const bool crosses_down = y % 2 == 1;  // the edge below row y leaves the block
-    for (int x = 0; x < w; ++x) {
-      bf[x / 2] += rf[x];
-      bb[x / 2] += rb[x];
-      if (x % 2 == 1) b_right[x / 2] += right[x];
-      if (crosses_down) b_down[x / 2] += down[x];
+    // A block's two pixels of the row, left then right: the sums add in raster order.
+    for (int x = 0; x + 1 < w; x += 2) {
+      bf[x / 2] = bf[x / 2] + rf[x] + rf[x + 1];
+      bb[x / 2] = bb[x / 2] + rb[x] + rb[x + 1];
+      b_right[x / 2] += right[x + 1];  // the edge right of an odd pixel leaves the block
+      if (crosses_down) b_down[x / 2] = b_down[x / 2] + down[x] + down[x + 1];
+    }
+    if (w % 2 == 1) {  // a last block one pixel wide
+      bf[w / 2] += rf[w - 1];
+      bb[w / 2] += rb[w - 1];
+      if (crosses_down) b_down[w / 2] += down[w - 1];
     }
   }
   return blocks;
@@ -134,9 +152,15 @@ void fixAwayFromBoundary(const cv::Mat& labels, int band, cv::Mat* state) {
   const cv::Mat kernel = cv::getStructuringElement(cv::MORPH_RECT, {2 * band + 1, 2 * band + 1});
   cv::dilate(labels, grown, kernel);
   cv::erode(labels, shrunk, kernel, cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(255));
-  for (int i = 0; i < state->rows * state->cols; ++i) {
-    if (state->data[i] != kFree || grown.data[i] != shrunk.data[i]) continue;
-    state->data[i] = labels.data[i] ? kFixedForeground : kFixedBackground;
+  // Selects and a bitwise and rather than branches, and the bound and pointers in locals (a
+  // byte store could change them otherwise), so that GCC vectorises the loop.
+  uchar* s = state->data;
+  const uchar *grown_at = grown.data, *shrunk_at = shrunk.data, *label = labels.data;
+  const int n = state->rows * state->cols;
+  for (int i = 0; i < n; ++i) {
+    const bool fix = (s[i] == kFree) & (grown_at[i] == shrunk_at[i]);
+    const uchar fixed = label[i] ? kFixedForeground : kFixedBackground;
+    s[i] = fix ? fixed : s[i];
   }
 }
 
@@ -154,6 +178,17 @@ cv::Mat labelCoarseToFine(const GridEnergy& energy, const cv::Mat& state, int re
   return labels;
 }
 
+namespace {
+
+// cv::norm(a - b, NORM_L2SQR) of two Vec3f, as OpenCV sums it (in float, channel by channel),
+// without its call.
+float squaredStep(const cv::Vec3f& a, const cv::Vec3f& b) {
+  const float d0 = a[0] - b[0], d1 = a[1] - b[1], d2 = a[2] - b[2];
+  return d0 * d0 + d1 * d1 + d2 * d2;
+}
+
+}  // namespace
+
 float squaredColourSteps(const cv::Mat& colour, GridEnergy* energy) {
   energy->right = cv::Mat::zeros(colour.size(), CV_32F);
   energy->down = cv::Mat::zeros(colour.size(), CV_32F);
@@ -165,8 +200,8 @@ float squaredColourSteps(const cv::Mat& colour, GridEnergy* energy) {
     float* right = energy->right.ptr<float>(y);
     float* down = energy->down.ptr<float>(y);
     for (int x = 0; x < w; ++x) {
-      if (x + 1 < w) sum += right[x] = static_cast<float>(cv::norm(c[x] - c[x + 1], cv::NORM_L2SQR));
-      if (y + 1 < h) sum += down[x] = static_cast<float>(cv::norm(c[x] - below[x], cv::NORM_L2SQR));
+      if (x + 1 < w) sum += right[x] = squaredStep(c[x], c[x + 1]);
+      if (y + 1 < h) sum += down[x] = squaredStep(c[x], below[x]);
     }
   }
   const long edges = static_cast<long>(w - 1) * h + static_cast<long>(h - 1) * w;

@@ -4,6 +4,7 @@
 #include <array>
 #include <climits>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace movseg {
@@ -32,6 +33,24 @@ namespace {
 
 using Node = GridMaxFlow::Node;
 
+// Calls visit(x, y) for each kFree pixel of `state`, in raster order. memchr skips each run of
+// fixed pixels, most of a banded grid.
+template <typename Visit>
+void forEachFreePixel(const cv::Mat& state, Visit visit) {
+  const int width = state.cols;
+  for (int y = 0; y < state.rows; ++y) {
+    const uchar* s = state.ptr<uchar>(y);
+    for (int x = 0; x < width; ++x) {
+      if (s[x] != kFree) {
+        const void* next_free = std::memchr(s + x, kFree, static_cast<size_t>(width - x));
+        if (next_free == nullptr) break;
+        x = static_cast<int>(static_cast<const uchar*>(next_free) - s);
+      }
+      visit(x, y);
+    }
+  }
+}
+
 // The max-flow of one energy, on nodes and orphans that a GridMaxFlow keeps: built, run()
 // once, then read by onSourceSide(). The grid is padded by one node on every side (parent
 // kNone, no capacity), so that every node of the image has four neighbours to look at.
@@ -45,15 +64,7 @@ class GridFlow {
         offset_{1, -1, state.cols + 2, -(state.cols + 2)} {
     nodes_.assign(static_cast<size_t>((state.cols + 2) * (state.rows + 2)), Node());
     orphans_.clear();
-    setCapacities(energy, state);
-    for (int i = 0; i < static_cast<int>(nodes_.size()); ++i) {
-      Node& n = nodes_[static_cast<size_t>(i)];
-      if (n.terminal == 0) continue;
-      n.parent = kTerminal;
-      n.tree = n.terminal < 0 ? kSinkTree : kSourceTree;
-      n.dist = 1;
-      enqueue(i);
-    }
+    forEachFreePixel(state, [&](int x, int y) { setCapacities(energy, state, x, y); });
   }
 
   void run() {
@@ -75,34 +86,35 @@ class GridFlow {
   Node& node(int i) { return nodes_[static_cast<size_t>(i)]; }
   const Node& node(int i) const { return nodes_[static_cast<size_t>(i)]; }
 
-  // Terminal capacities (cost_bg from the source, cost_fg to the sink, less what both share)
-  // and the edges between free pixels; an edge to a fixed pixel becomes terminal capacity.
-  void setCapacities(const GridEnergy& energy, const cv::Mat& state) {
-    for (int y = 0; y < state.rows; ++y) {
-      const float* fg = energy.cost_fg.ptr<float>(y);
-      const float* bg = energy.cost_bg.ptr<float>(y);
-      const float* right = energy.right.ptr<float>(y);
-      const float* down = energy.down.ptr<float>(y);
-      const uchar* s = state.ptr<uchar>(y);
-      const uchar* below = y + 1 < state.rows ? state.ptr<uchar>(y + 1) : nullptr;
-      Node* row = &node(index(0, y));
-      for (int x = 0; x < state.cols; ++x) {
-        if (s[x] == kFree) row[x].terminal += bg[x] - fg[x];
-        if (x + 1 < state.cols) link(s[x], s[x + 1], right[x], kRight, &row[x], &row[x + 1]);
-        if (below) link(s[x], below[x], down[x], kDown, &row[x], &row[x + width_]);
-      }
-    }
+  // The free pixel (x, y): its terminal capacity (cost_bg from the source, cost_fg to the sink,
+  // less what both share; an edge to a fixed pixel adds to it) and its edges to free pixels.
+  // The terminal sums its terms in raster order of the edges (up, left, own, right, down), the
+  // order a sweep over all edges would add them in. A node with a terminal capacity is active,
+  // the queue in raster order.
+  void setCapacities(const GridEnergy& energy, const cv::Mat& state, int x, int y) {
+    const int i = index(x, y);
+    Node& n = node(i);
+    const float* right = energy.right.ptr<float>(y);
+    const float* down = energy.down.ptr<float>(y);
+    const uchar* s = state.ptr<uchar>(y);
+    if (y > 0) link(state.ptr<uchar>(y - 1)[x], energy.down.ptr<float>(y - 1)[x], kUp, &n);
+    if (x > 0) link(s[x - 1], right[x - 1], kLeft, &n);
+    n.terminal += energy.cost_bg.ptr<float>(y)[x] - energy.cost_fg.ptr<float>(y)[x];
+    if (x + 1 < state.cols) link(s[x + 1], right[x], kRight, &n);
+    if (y + 1 < state.rows) link(state.ptr<uchar>(y + 1)[x], down[x], kDown, &n);
+    if (n.terminal == 0) return;
+    n.parent = kTerminal;
+    n.tree = n.terminal < 0 ? kSinkTree : kSourceTree;
+    n.dist = 1;
+    enqueue(i);
   }
 
-  // The edge from a to its neighbour b in direction d (states sa, sb).
-  static void link(uchar sa, uchar sb, float weight, Direction d, Node* a, Node* b) {
-    if (sa == kFree && sb == kFree) {
+  // The edge of weight `weight` from a free node to its neighbour in direction d (state sb).
+  static void link(uchar sb, float weight, Direction d, Node* a) {
+    if (sb == kFree) {
       a->cap[static_cast<size_t>(d)] = weight;
-      b->cap[static_cast<size_t>(d ^ 1)] = weight;
-    } else if (sa == kFree) {
+    } else {
       a->terminal += sb == kFixedForeground ? weight : -weight;
-    } else if (sb == kFree) {
-      b->terminal += sa == kFixedForeground ? weight : -weight;
     }
   }
 
@@ -138,24 +150,27 @@ class GridFlow {
   int grow(int* from) {
     while (first_ != kEnd) {
       const int v = first_;
-      Node& nv = node(v);
+      const Node& nv = node(v);
       if (nv.parent != kNone) {
+        // v's own fields do not change in the loop: in locals, not read again after each store.
+        const std::uint8_t tree = nv.tree;
+        const int ts = nv.ts, dist = nv.dist + 1;
         for (int d = 0; d < 4; ++d) {
-          if (treeResidual(nv.tree, v, d) == 0) continue;
+          if (treeResidual(tree, v, d) == 0) continue;
           Node& nu = node(v + offset_[d]);
           if (nu.parent == kNone) {
-            nu.tree = nv.tree;
+            nu.tree = tree;
             nu.parent = static_cast<std::int8_t>(d ^ 1);
-            nu.ts = nv.ts;
-            nu.dist = nv.dist + 1;
+            nu.ts = ts;
+            nu.dist = dist;
             enqueue(v + offset_[d]);
-          } else if (nu.tree != nv.tree) {
+          } else if (nu.tree != tree) {
             *from = v;
             return d;
-          } else if (nu.dist > nv.dist + 1 && nu.ts <= nv.ts) {  // a shorter way to the root
+          } else if (nu.dist > dist && nu.ts <= ts) {  // a shorter way to the root
             nu.parent = static_cast<std::int8_t>(d ^ 1);
-            nu.ts = nv.ts;
-            nu.dist = nv.dist + 1;
+            nu.ts = ts;
+            nu.dist = dist;
           }
         }
       }
@@ -310,19 +325,17 @@ cv::Mat GridMaxFlow::label(const GridEnergy& energy, const cv::Mat& state, int* 
   GridFlow flow(energy, state, &nodes_, &orphans_);
   flow.run();
   cv::Mat labels(state.size(), CV_8U);
-  *nodes = 0;
-  for (int y = 0; y < state.rows; ++y) {
+  const int width = state.cols;  // a local, which the byte stores cannot change: GCC vectorises
+  for (int y = 0; y < state.rows; ++y) {  // the fixed pixels' labels
     const uchar* s = state.ptr<uchar>(y);
     uchar* out = labels.ptr<uchar>(y);
-    for (int x = 0; x < state.cols; ++x) {
-      if (s[x] == kFree) {
-        ++*nodes;
-        out[x] = flow.onSourceSide(x, y) ? 255 : 0;
-      } else {
-        out[x] = s[x] == kFixedForeground ? 255 : 0;
-      }
-    }
+    for (int x = 0; x < width; ++x) out[x] = s[x] == kFixedForeground ? 255 : 0;
   }
+  *nodes = 0;
+  forEachFreePixel(state, [&](int x, int y) {
+    ++*nodes;
+    labels.at<uchar>(y, x) = flow.onSourceSide(x, y) ? 255 : 0;
+  });
   return labels;
 }
 

@@ -26,12 +26,16 @@ void addEdgePoints(const cv::Mat& grey, int cell, int margin, std::vector<cv::Po
     const short* row_x = gx.ptr<short>(y);
     const short* row_y = gy.ptr<short>(y);
     const size_t cell_row = static_cast<size_t>((y - inner.y) / cell) * cells_x;
-    for (int x = inner.x; x < inner.br().x; ++x) {
-      const int magnitude = std::abs(row_x[x]) + std::abs(row_y[x]);
-      const size_t c = cell_row + static_cast<size_t>((x - inner.x) / cell);
-      if (magnitude > best[c]) {
-        best[c] = magnitude;
-        at[c] = {x, y};
+    // Cell by cell along the row (no division per pixel); each cell's pixels in raster order.
+    for (int x0 = inner.x, c = 0; x0 < inner.br().x; x0 += cell, ++c) {
+      const int x1 = std::min(x0 + cell, inner.br().x);
+      int& cell_best = best[cell_row + static_cast<size_t>(c)];
+      for (int x = x0; x < x1; ++x) {
+        const int magnitude = std::abs(row_x[x]) + std::abs(row_y[x]);
+        if (magnitude > cell_best) {
+          cell_best = magnitude;
+          at[cell_row + static_cast<size_t>(c)] = {x, y};
+        }
       }
     }
   }
