@@ -85,14 +85,16 @@ bool isSceneCutUnderCamera(const cv::Mat& bgr, const cv::Mat& previous_bgr,
 // The residuals at the samples the photometric check does not confirm as moving (less than
 // half confirmed): the background's, whatever the movers' share of the frame, so that the
 // scale is the background's spread and not the movers' speed. When nearly everything is
-// confirmed (under a quarter left), the check says nothing and all samples count.
-std::vector<float> unconfirmedResiduals(const FlowCamera& camera, const cv::Mat& confirmation) {
-  const std::vector<float> all = residualAtSamples(camera);
-  std::vector<float> kept;
-  for (size_t i = 0; i < all.size(); ++i) {
-    if (confirmation.at<float>(cv::Point(camera.at[i])) < 0.5f) kept.push_back(all[i]);
+// confirmed (under a quarter left), the check says nothing and all samples count. Returns `all`
+// or `kept`, where they are written.
+std::vector<float>* unconfirmedResiduals(const FlowCamera& camera, const cv::Mat& confirmation,
+                                         std::vector<float>* all, std::vector<float>* kept) {
+  residualAtSamples(camera, all);
+  kept->clear();
+  for (size_t i = 0; i < all->size(); ++i) {
+    if (confirmation.at<float>(cv::Point(camera.at[i])) < 0.5f) kept->push_back((*all)[i]);
   }
-  return kept.size() >= all.size() / 4 ? kept : all;
+  return kept->size() >= all->size() / 4 ? kept : all;
 }
 
 // Depth read from one pair may be movers agreeing on an epipole by chance, or water; a translating
@@ -116,7 +118,11 @@ class PersistentDepth {
 class DensePipeline : public Pipeline {
  public:
   explicit DensePipeline(const Params& params)
-      : params_(params), flow_(params.flow_finest_scale), colour_(params), rng_(params.seed) {}
+      : params_(params),
+        flow_(params.flow_finest_scale),
+        camera_fitter_(params),
+        colour_(params),
+        rng_(params.seed) {}
 
   std::unique_ptr<Analysis> newAnalysis() const override {
     return std::make_unique<DenseAnalysis>();
@@ -137,7 +143,7 @@ class DensePipeline : public Pipeline {
     } else {
       a.input_grey.release();
     }
-    a.samples = gridSamples(a.grey, params_.flow_sample_step);
+    gridSamples(a.grey, params_.flow_sample_step, &a.samples);
     blockContrast(a.bgr, params_.smoothness, &a.contrast);
     a.prepare_ms = millisecondsSince(start);
     start = Clock::now();
@@ -159,8 +165,9 @@ class DensePipeline : public Pipeline {
     Clock::time_point start = Clock::now();
     cv::Mat carried, evidence;
     photometric_.followFlow(previous_.grey, mask_, a.flow_map, &carried);
-    FlowCamera camera = fitFlowCamera(a.flow, a.samples, carried, params_, rng_,
-                                      last_model_ ? &*last_model_ : nullptr);
+    FlowCamera& camera = camera_;
+    camera_fitter_.fit(a.flow, a.samples, carried, rng_, last_model_ ? &*last_model_ : nullptr,
+                       &camera);
     if (!camera.fallback) last_model_ = camera.model;
     depth_.settle(&camera);
     cameraMap(camera.model, a.grey.size(), &camera_map_);
@@ -175,7 +182,8 @@ class DensePipeline : public Pipeline {
     diag.scene_cut = isSceneCutUnderCamera(a.bgr, previous_.bgr, camera_map_);
     if (diag.scene_cut) return forget(a.bgr.size());
     photometric_.confirm(a.grey, camera_map_, params_, &confirmation_);
-    const float scale = residualScale(unconfirmedResiduals(camera, confirmation_), params_);
+    const float scale = residualScale(
+        unconfirmedResiduals(camera, confirmation_, &sample_residuals_, &unconfirmed_), params_);
     diag.residual_scale = scale;
     motionEvidence(residual_, scale, params_, &evidence);
     confirmMotion(confirmation_, &evidence);
@@ -257,6 +265,9 @@ class DensePipeline : public Pipeline {
 
   Params params_;
   DenseFlow flow_;
+  FlowCameraFitter camera_fitter_;
+  FlowCamera camera_;  // the pair's, in the buffers of the last
+  std::vector<float> sample_residuals_, unconfirmed_;  // scratch of unconfirmedResiduals()
   ColourModel colour_;
   cv::RNG rng_;
   cv::Mat mask_;  // the last frame's, at the working scale
