@@ -8,23 +8,22 @@
 
 namespace movseg {
 
-cv::Mat decidedPixels(const GridEnergy& energy) {
+void decidedPixels(const GridEnergy& energy, cv::Mat* state) {
   const int w = energy.cost_fg.cols, h = energy.cost_fg.rows;
-  cv::Mat state(energy.cost_fg.size(), CV_8U);
+  state->create(energy.cost_fg.size(), CV_8U);
   for (int y = 0; y < h; ++y) {
     const float* rf = energy.cost_fg.ptr<float>(y);
     const float* rb = energy.cost_bg.ptr<float>(y);
     const float* right = energy.right.ptr<float>(y);
     const float* down = energy.down.ptr<float>(y);
     const float* up = y > 0 ? energy.down.ptr<float>(y - 1) : nullptr;
-    uchar* s = state.ptr<uchar>(y);
+    uchar* s = state->ptr<uchar>(y);
     for (int x = 0; x < w; ++x) {
       const float edges = right[x] + down[x] + (x > 0 ? right[x - 1] : 0.f) + (up ? up[x] : 0.f);
       const float prefer_fg = rb[x] - rf[x];
       s[x] = prefer_fg > edges ? kFixedForeground : prefer_fg < -edges ? kFixedBackground : kFree;
     }
   }
-  return state;
 }
 
 namespace {
@@ -88,8 +87,13 @@ cv::Mat blockState(const cv::Mat& state) {
 cv::Mat labelFreePixels(const GridEnergy& energy, const cv::Mat& state, MaxFlowSolver solver,
                         int* nodes, GridMaxFlow* memory) {
   if (solver == MaxFlowSolver::kGrid) {
-    if (memory) return memory->label(energy, state, nodes);
-    return GridMaxFlow().label(energy, state, nodes);
+    cv::Mat labels;
+    if (memory) {
+      memory->label(energy, state, nodes, &labels);
+    } else {
+      GridMaxFlow().label(energy, state, nodes, &labels);
+    }
+    return labels;
   }
   cv::Mat node;
   const FlowGraph graph = freePixelGraph(energy, state, &node);
@@ -155,8 +159,10 @@ cv::Mat labelCoarseToFine(const GridEnergy& energy, const cv::Mat& state, int re
 }
 
 float squaredColourSteps(const cv::Mat& colour, GridEnergy* energy) {
-  energy->right = cv::Mat::zeros(colour.size(), CV_32F);
-  energy->down = cv::Mat::zeros(colour.size(), CV_32F);
+  for (cv::Mat* steps : {&energy->right, &energy->down}) {
+    steps->create(colour.size(), CV_32F);
+    *steps = cv::Scalar::all(0);  // a memset, where setTo(0) allocates a copy of the scalar
+  }
   const int w = colour.cols, h = colour.rows;
   double sum = 0;
   for (int y = 0; y < h; ++y) {

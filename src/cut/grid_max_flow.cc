@@ -306,14 +306,15 @@ class GridFlow {
 GridMaxFlow::GridMaxFlow() = default;
 GridMaxFlow::~GridMaxFlow() = default;
 
-cv::Mat GridMaxFlow::label(const GridEnergy& energy, const cv::Mat& state, int* nodes) {
+void GridMaxFlow::label(const GridEnergy& energy, const cv::Mat& state, int* nodes,
+                        cv::Mat* labels) {
   GridFlow flow(energy, state, &nodes_, &orphans_);
   flow.run();
-  cv::Mat labels(state.size(), CV_8U);
+  labels->create(state.size(), CV_8U);
   *nodes = 0;
   for (int y = 0; y < state.rows; ++y) {
     const uchar* s = state.ptr<uchar>(y);
-    uchar* out = labels.ptr<uchar>(y);
+    uchar* out = labels->ptr<uchar>(y);
     for (int x = 0; x < state.cols; ++x) {
       if (s[x] == kFree) {
         ++*nodes;
@@ -323,7 +324,6 @@ cv::Mat GridMaxFlow::label(const GridEnergy& energy, const cv::Mat& state, int* 
       }
     }
   }
-  return labels;
 }
 
 }  // namespace movseg

@@ -235,6 +235,16 @@ void FlowCameraFitter::fit(const cv::Mat& flow, const std::vector<GridSample>& g
   camera->background.clear();
   camera->fallback = false;
   camera->epipole.reset();
+  // An element per sample at most: reserved at once, the vectors do not grow pair after pair as
+  // more samples are kept.
+  for (auto* points : {&camera->at, &camera->to, &x_, &y_, &plane_step_}) {
+    points->reserve(grid.size());
+  }
+  camera->background.reserve(grid.size());
+  residuals_.reserve(grid.size());
+  coverage_.reserve(grid.size());
+  homography_.reserve(grid.size());
+  epipole_.reserve(grid.size());
   const float flat = textureQuantile(grid, params_.flow_texture_quantile, &textures_);
   size_t background = 0;
   for (const GridSample& s : grid) {

@@ -57,6 +57,18 @@ class Ransac {
 
   explicit Ransac(const RansacOptions& options) : options_(options) { options_.check(); }
 
+  // Storage for as many correspondences, so that calls with up to that many, however many each
+  // has, allocate nothing.
+  void reserve(size_t points) {
+    report_.inlier_mask.reserve(points);
+    measurer_.reserve(points);
+    sampler_.reserve(points);
+    residuals_.reserve(points);
+    mask_.reserve(points);
+    ix_.reserve(points);
+    iy_.reserve(points);
+  }
+
   // x[i] (previous frame) corresponds to y[i] (current frame); both lie in an image of
   // `image_size`. `initial`, when given, is scored before any sample is drawn (a warm start).
   // The report is the loop's own, valid until the next call: its buffers, and the sampler's

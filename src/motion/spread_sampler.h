@@ -21,6 +21,12 @@ class SpreadSampler {
   // allocates nothing once it has seen as many points and cells.
   void reset(const std::vector<cv::Point2f>& points, cv::Size image_size, int grid);
 
+  // Storage for as many points, so that no reset up to that many allocates.
+  void reserve(size_t points) {
+    members_.reserve(points);
+    cell_of_.reserve(points);
+  }
+
   // Writes `count` distinct indices into `sample`; false when there are fewer points.
   bool sample(int count, cv::RNG& rng, std::vector<int>* sample) const;
 

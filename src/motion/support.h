@@ -26,6 +26,9 @@ class CoverageSupportMeasurer {
   // The same for a new set of points, in the storage of the last.
   void reset(const std::vector<cv::Point2f>& points, cv::Size image_size);
 
+  // Storage for as many points, so that no reset up to that many allocates.
+  void reserve(size_t points) { cell_.reserve(points); }
+
   // The support of a hypothesis whose squared residuals are `residuals`.
   Support evaluate(const std::vector<double>& residuals, double max_residual) const;
 
