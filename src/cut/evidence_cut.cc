@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 
+#include <opencv2/core/hal/intrin.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "core/frame.h"
@@ -54,9 +55,16 @@ void costs(const cv::Mat& evidence, cv::Mat* fg, cv::Mat* bg) {
 // The size of the 2x2 blocks of an image of `size` (a last odd row or column is a block).
 cv::Size blocksOf(cv::Size size) { return scaledSize(size, (size.width + 1) / 2); }
 
+// The sums of one channel's 16 pixels two by two, in 16-bit lanes.
+cv::v_uint16x8 pairSums(const cv::v_uint8x16& channel) {
+  const cv::v_uint16x8 pairs = cv::v_reinterpret_as_u16(channel);
+  return (pairs & cv::v_setall_u16(0xff)) + (pairs >> 8);
+}
+
 // `bgr` at its blocks' size by area averaging, as cv::resize's INTER_AREA makes it: at exactly
 // half the size, each block the rounded mean of its 2x2 pixels, which cv::resize computes after
-// allocating a table of offsets; other sizes (an odd side) by cv::resize.
+// allocating a table of offsets; other sizes (an odd side) by cv::resize. Sixteen blocks at a
+// time, the channels apart (a loop over bytes three apart would cost twice OpenCV's).
 void toBlocks(const cv::Mat& bgr, cv::Mat* blocks) {
   const cv::Size size = blocksOf(bgr.size());
   if (size * 2 != bgr.size()) {
@@ -64,13 +72,32 @@ void toBlocks(const cv::Mat& bgr, cv::Mat* blocks) {
     return;
   }
   blocks->create(size, CV_8UC3);
+  const cv::v_uint16x8 two = cv::v_setall_u16(2);
   for (int y = 0; y < size.height; ++y) {
     const uchar* top = bgr.ptr<uchar>(2 * y);
     const uchar* bottom = bgr.ptr<uchar>(2 * y + 1);
     uchar* out = blocks->ptr<uchar>(y);
-    for (int x = 0; x < size.width * 3; ++x) {
-      const int at = x + x / 3 * 3;  // the block's top-left pixel, channel x % 3
-      out[x] = static_cast<uchar>((top[at] + top[at + 3] + bottom[at] + bottom[at + 3] + 2) >> 2);
+    int x = 0;
+    for (; x + 16 <= size.width; x += 16) {
+      cv::v_uint16x8 means[2][3];  // blocks x to x + 7 and x + 8 to x + 15, by channel
+      for (int half = 0; half < 2; ++half) {
+        cv::v_uint8x16 upper[3], lower[3];
+        cv::v_load_deinterleave(top + 6 * x + 48 * half, upper[0], upper[1], upper[2]);
+        cv::v_load_deinterleave(bottom + 6 * x + 48 * half, lower[0], lower[1], lower[2]);
+        for (int c = 0; c < 3; ++c) {
+          means[half][c] = (pairSums(upper[c]) + pairSums(lower[c]) + two) >> 2;
+        }
+      }
+      cv::v_store_interleave(out + 3 * x, cv::v_pack(means[0][0], means[1][0]),
+                             cv::v_pack(means[0][1], means[1][1]),
+                             cv::v_pack(means[0][2], means[1][2]));
+    }
+    for (; x < size.width; ++x) {
+      for (int c = 0; c < 3; ++c) {
+        const int at = 6 * x + c;
+        out[3 * x + c] =
+            static_cast<uchar>((top[at] + top[at + 3] + bottom[at] + bottom[at + 3] + 2) >> 2);
+      }
     }
   }
 }
