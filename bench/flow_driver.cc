@@ -6,7 +6,6 @@
 // does not depend on what else the machine is doing.
 #include <algorithm>
 #include <cstdio>
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -14,20 +13,11 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "flow/dense_flow.h"
+#include "image_files.h"
 #include "movseg/params.h"
 #include "opencv_dense_flow.h"
 
 namespace {
-
-std::vector<std::string> imagesIn(const std::string& folder) {
-  std::vector<std::string> files;
-  for (const auto& entry : std::filesystem::directory_iterator(folder)) {
-    const std::string ext = entry.path().extension().string();
-    if (ext == ".jpg" || ext == ".png") files.push_back(entry.path().string());
-  }
-  std::sort(files.begin(), files.end());
-  return files;
-}
 
 // One pair, not inlined: what the instruction count is taken of.
 template <class Flow>

@@ -5,29 +5,15 @@
 // what else the machine is doing.
 #include <algorithm>
 #include <cstdio>
-#include <filesystem>
 #include <string>
 #include <vector>
 
 #include <opencv2/core/utility.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "image_files.h"
 #include "movseg/fields.h"
 #include "movseg/segmenter.h"
-
-namespace {
-
-std::vector<std::string> imagesIn(const std::string& folder) {
-  std::vector<std::string> files;
-  for (const auto& entry : std::filesystem::directory_iterator(folder)) {
-    const std::string ext = entry.path().extension().string();
-    if (ext == ".jpg" || ext == ".png") files.push_back(entry.path().string());
-  }
-  std::sort(files.begin(), files.end());
-  return files;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   if (argc < 2) {

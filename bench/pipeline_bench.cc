@@ -27,6 +27,7 @@
 #include "cut/geodesic.h"
 #include "cut/graph_cut.h"
 #include "flow/dense_flow.h"
+#include "io/frame_source.h"
 #include "motion/camera_tracker.h"
 #include "motion/model.h"
 #include "movseg/fields.h"
@@ -208,13 +209,9 @@ Clip davisClip(const std::string& sequence, cv::Size size) {
                 (size.empty() ? "native"
                               : std::to_string(size.width) + "x" + std::to_string(size.height)),
             {}};
-  std::vector<std::string> files;
-  std::error_code error;
-  for (const auto& entry :
-       std::filesystem::directory_iterator(davisRoot() + "/" + sequence + "/frames", error)) {
-    files.push_back(entry.path().string());
-  }
-  std::sort(files.begin(), files.end());
+  const std::string folder = davisRoot() + "/" + sequence + "/frames";
+  if (!std::filesystem::is_directory(folder)) return clip;
+  std::vector<std::string> files = listImages(folder);
   files.resize(std::min<size_t>(files.size(), 12));
   for (const std::string& file : files) {
     cv::Mat frame = cv::imread(file);

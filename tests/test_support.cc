@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -15,6 +16,8 @@
 
 #include <gtest/gtest.h>
 #include <opencv2/core/utility.hpp>
+
+#include "io/frame_source.h"
 
 namespace movseg::test {
 
@@ -140,6 +143,14 @@ std::string davisSequence(const std::string& name) {
   const std::string root = data != nullptr ? data : std::string(MOVSEG_SOURCE_DIR) + "/../shared/data";
   const std::string folder = root + "/davis2016/" + name;
   return std::filesystem::is_directory(folder + "/frames") ? folder : "";
+}
+
+std::vector<std::string> davisFrames(const std::string& name, size_t count) {
+  const std::string folder = davisSequence(name);
+  if (folder.empty()) return {};
+  std::vector<std::string> files = listImages(folder + "/frames");
+  files.resize(std::min(files.size(), count));
+  return files;
 }
 
 }  // namespace movseg::test

@@ -72,6 +72,9 @@ bool ffmpeg(const std::string& arguments);
 // shared data next to the source tree; "" when it is not there (tests then skip).
 std::string davisSequence(const std::string& name);
 
+// The first `count` frame files of that sequence, in order; none when it is not there.
+std::vector<std::string> davisFrames(const std::string& name, size_t count);
+
 }  // namespace movseg::test
 
 #include <cstdint>

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <limits>
 #include <string>
 #include <vector>
@@ -254,14 +253,8 @@ TEST(BilinearRemap, TwoSourcesThroughOneMapGetOpenCvsRemaps) {
 // frame, as the photometric check warps it) and a thresholded frame standing for a mask (as the
 // mask is carried).
 TEST(BilinearRemap, AgreesWithOpenCvOnDavisFramesThroughTheirFlow) {
-  const std::string folder = test::davisSequence("dog");
-  if (folder.empty()) GTEST_SKIP() << "no DAVIS data (set MOVSEG_DATA)";
-  std::vector<std::string> files;
-  for (const auto& entry : std::filesystem::directory_iterator(folder + "/frames")) {
-    files.push_back(entry.path().string());
-  }
-  std::sort(files.begin(), files.end());
-  files.resize(std::min<size_t>(files.size(), 5));
+  const std::vector<std::string> files = test::davisFrames("dog", 5);
+  if (files.empty()) GTEST_SKIP() << "no DAVIS data (set MOVSEG_DATA)";
   DenseFlow dense(1);
   cv::Mat previous, flows[2], map;  // two flows in flight, as DenseFlow asks
   int pairs = 0;

@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -81,14 +80,8 @@ TEST(BoxMean5, WritesIntoAView) {
 }
 
 TEST(BoxMean5, AgreesWithOpenCvOnDavisFrames) {
-  const std::string folder = test::davisSequence("dog");
-  if (folder.empty()) GTEST_SKIP() << "no DAVIS data (set MOVSEG_DATA)";
-  std::vector<std::string> files;
-  for (const auto& entry : std::filesystem::directory_iterator(folder + "/frames")) {
-    files.push_back(entry.path().string());
-  }
-  std::sort(files.begin(), files.end());
-  files.resize(std::min<size_t>(files.size(), 3));
+  const std::vector<std::string> files = test::davisFrames("dog", 3);
+  if (files.empty()) GTEST_SKIP() << "no DAVIS data (set MOVSEG_DATA)";
   for (const std::string& file : files) {
     const cv::Mat grey = cv::imread(file, cv::IMREAD_GRAYSCALE);
     ASSERT_FALSE(grey.empty()) << file;

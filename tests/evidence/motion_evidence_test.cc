@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -186,14 +185,8 @@ TEST(PhotometricCheck, GivesOpenCvsConfirmationWithOtherMarginsAndAStillCamera) 
 // near the pair's motion, the previous frame's mask a thresholded frame; one check object over
 // the pairs, as the pipeline keeps it.
 TEST(PhotometricCheck, GivesOpenCvsConfirmationAndCarriedMaskOnDavisPairs) {
-  const std::string folder = test::davisSequence("dog");
-  if (folder.empty()) GTEST_SKIP() << "no DAVIS data (set MOVSEG_DATA)";
-  std::vector<std::string> files;
-  for (const auto& entry : std::filesystem::directory_iterator(folder + "/frames")) {
-    files.push_back(entry.path().string());
-  }
-  std::sort(files.begin(), files.end());
-  files.resize(std::min<size_t>(files.size(), 5));
+  const std::vector<std::string> files = test::davisFrames("dog", 5);
+  if (files.empty()) GTEST_SKIP() << "no DAVIS data (set MOVSEG_DATA)";
   DenseFlow dense(Params().flow_finest_scale);
   PhotometricCheck check;
   cv::Mat previous, flows[2], flow_map, camera_map;  // two flows in flight, as DenseFlow asks

@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <filesystem>
 #include <limits>
 #include <string>
 #include <vector>
@@ -154,14 +153,8 @@ TEST(DisFlow, AgreesWithOpenCvOnTinyFrames) {
 // The DAVIS frames movseg sees (the working width of 320 and the stored 854x480), pair after
 // pair, each starting from the previous pair's flow as DenseFlow does.
 TEST(DisFlow, AgreesWithOpenCvOnDavisPairs) {
-  const std::string folder = test::davisSequence("dog");
-  if (folder.empty()) GTEST_SKIP() << "no DAVIS data (set MOVSEG_DATA)";
-  std::vector<std::string> files;
-  for (const auto& entry : std::filesystem::directory_iterator(folder + "/frames")) {
-    files.push_back(entry.path().string());
-  }
-  std::sort(files.begin(), files.end());
-  files.resize(std::min<size_t>(files.size(), 6));
+  const std::vector<std::string> files = test::davisFrames("dog", 6);
+  if (files.empty()) GTEST_SKIP() << "no DAVIS data (set MOVSEG_DATA)";
   for (const cv::Size size : {cv::Size(320, 180), cv::Size(320, 240), cv::Size()}) {
     cv::Mat previous, initial;
     for (const std::string& file : files) {
