@@ -45,7 +45,8 @@ bool SpreadSampler::sample(int count, cv::RNG& rng, std::vector<int>* sample) co
       if (std::find(chosen_.begin(), chosen_.end(), c) != chosen_.end()) continue;
       chosen_.push_back(c);
       const Cell& cell = cells_[static_cast<size_t>(c)];
-      sample->push_back(members_[static_cast<size_t>(cell.begin + rng.uniform(0, cell.end - cell.begin))]);
+      const int member = cell.begin + rng.uniform(0, cell.end - cell.begin);
+      sample->push_back(members_[static_cast<size_t>(member)]);
     }
     return true;
   }

@@ -102,7 +102,7 @@ double allocationsPerFrame(Method method) {
 // its RANSACs and its scratch from one frame to the next, the result's mask comes from a pool
 // the caller gives back by letting the result go, and the OpenCV calls that allocate on every
 // call (cv::eigen, getPerspectiveTransform, filter engines, resizes by two, operations with a
-// scalar) are replaced by code of our own that gives the same bits.
+// scalar) are replaced by code of our own with the same results.
 TEST(Allocations, DenseMakesNoAllocationsPerFrame) {
   const double per_frame = allocationsPerFrame(Method::kDense);
   std::printf("dense: %.1f allocations per frame\n", per_frame);

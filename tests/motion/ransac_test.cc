@@ -306,7 +306,10 @@ TEST(Estimators, HomographyThroughFourPointsIsGetPerspectiveTransformsToTheBit) 
   for (int trial = 0; trial < 2000; ++trial) {
     const std::vector<cv::Point2f> x = spreadPoints(4, static_cast<std::uint64_t>(trial) + 1);
     std::vector<cv::Point2f> y;
-    for (const cv::Point2f& p : x) y.push_back(p + cv::Point2f(rng.uniform(-5.f, 5.f), rng.uniform(-5.f, 5.f)));
+    for (const cv::Point2f& p : x) {
+      const float dx = rng.uniform(-5.f, 5.f), dy = rng.uniform(-5.f, 5.f);
+      y.push_back(p + cv::Point2f(dx, dy));
+    }
     cv::Matx33d ours;
     if (!HomographyEstimator::estimate(x, y, &ours)) continue;
     const cv::Matx33d opencv(cv::getPerspectiveTransform(x, y));
