@@ -11,6 +11,7 @@ PACKAGES=(
   libcli11-dev                          # command-line parsing
   nlohmann-json3-dev                    # --stats / --json output
   libboost-graph-dev                    # Boykov-Kolmogorov max-flow
+  libeigen3-dev                         # cv::eigen's solver, called on fixed-size storage
   libgtest-dev libgmock-dev             # unit tests
   libbenchmark-dev                      # bench/
   pybind11-dev python3-dev python3-numpy python3-opencv python3-pytest  # Python module

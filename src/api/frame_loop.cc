@@ -88,8 +88,12 @@ void FrameLoop::segment(Job* job) {
     // Nothing moves without a previous frame, whatever a pipeline makes of its first one (MOG2
     // calls everything foreground), nor across a scene cut, where everything differs.
     const Diagnostics& diag = result.diagnostics;
-    result.mask = diag.first_frame || diag.scene_cut ? cv::Mat::zeros(job->size, CV_8U)
-                                                     : upscaledMask(mask, job->size);
+    result.mask = masks_.take(job->size, CV_8U);
+    if (diag.first_frame || diag.scene_cut) {
+      result.mask.setTo(0);
+    } else {
+      upscaledMask(mask, job->size, &result.mask);
+    }
   });
   debug.put("mask", [&] { return result.mask; });
   result.diagnostics.total_ms = job->analyse_ms + millisecondsSince(start);

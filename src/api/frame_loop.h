@@ -64,6 +64,7 @@ class FrameLoop {
   bool work_limited_ = false;  // pipeline_ runs with lowered parameters
   cv::Size size_;  // of the last analysed frame; empty before the first frame of a stream
   FramePool frames_;
+  FramePool masks_;  // of the results' masks: a caller that lets a result go gives it back
 };
 
 }  // namespace movseg

@@ -128,21 +128,17 @@ PreparedFrame prepareFrame(const cv::Mat& bgr, const Params& params) {
   return f;
 }
 
-cv::Mat scaledMask(const cv::Mat& mask, cv::Size size) {
-  cv::Mat out;
-  cv::resize(mask, out, size, 0, 0, cv::INTER_LINEAR);
-  return out;
+void scaledMask(const cv::Mat& mask, cv::Size size, cv::Mat* out) {
+  cv::resize(mask, *out, size, 0, 0, cv::INTER_LINEAR);
 }
 
-cv::Mat upscaledMask(const cv::Mat& mask, cv::Size size) {
-  cv::Mat out;
+void upscaledMask(const cv::Mat& mask, cv::Size size, cv::Mat* out) {
   if (mask.size() == size) {
-    cv::threshold(mask, out, 127, 255, cv::THRESH_BINARY);
+    cv::threshold(mask, *out, 127, 255, cv::THRESH_BINARY);
   } else {  // one image, thresholded in place
-    out = scaledMask(mask, size);
-    cv::threshold(out, out, 127, 255, cv::THRESH_BINARY);
+    scaledMask(mask, size, out);
+    cv::threshold(*out, *out, 127, 255, cv::THRESH_BINARY);
   }
-  return out;
 }
 
 }  // namespace movseg

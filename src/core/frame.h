@@ -55,13 +55,14 @@ struct PreparedFrame {
 
 PreparedFrame prepareFrame(const cv::Mat& bgr, const Params& params);
 
-// A soft mask (CV_8U, above 127 moving) resized to `size` by bilinear interpolation, not yet
-// thresholded: what upscaledMask thresholds, and what EdgeSnap refines at the input's size.
-cv::Mat scaledMask(const cv::Mat& mask, cv::Size size);
+// A soft mask (CV_8U, above 127 moving) resized to `size` by bilinear interpolation into *out,
+// not yet thresholded: what upscaledMask thresholds, and what EdgeSnap refines at the input's
+// size. *out must not be `mask`.
+void scaledMask(const cv::Mat& mask, cv::Size size, cv::Mat* out);
 
-// scaledMask thresholded to 0/255, so that a mask computed at a working scale has smooth rather
-// than blocky boundaries at full resolution; grey levels along its outline (EdgeSnap's) place
-// it between pixels.
-cv::Mat upscaledMask(const cv::Mat& mask, cv::Size size);
+// scaledMask thresholded to 0/255 into *out, so that a mask computed at a working scale has
+// smooth rather than blocky boundaries at full resolution; grey levels along its outline
+// (EdgeSnap's) place it between pixels. *out must not be `mask`.
+void upscaledMask(const cv::Mat& mask, cv::Size size, cv::Mat* out);
 
 }  // namespace movseg

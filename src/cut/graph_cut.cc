@@ -88,7 +88,8 @@ CutResult geodesicGraphCut(const cv::Mat& bgr, const std::vector<cv::Point>& for
       geodesicUnaries(grid.distanceFrom(foreground, kGeodesicSweeps),
                       grid.distanceFrom(background, kGeodesicSweeps), foreground, background, &energy);
   pairwiseWeights(colour, result.confidence, params.cut_weight, &energy);
-  cv::Mat state = decidedPixels(energy);
+  cv::Mat state;
+  decidedPixels(energy, &state);
   // The cut can only move the boundary of the geodesic labelling (D_F < D_B) so far
   // (docs/design.md): the pixels farther than the band keep that label. Not exact.
   if (params.cut_band > 0) fixAwayFromBoundary(energy.cost_fg < energy.cost_bg, params.cut_band, &state);

@@ -8,30 +8,41 @@
 
 namespace movseg {
 
-cv::Mat decidedPixels(const GridEnergy& energy) {
-  const int w = energy.cost_fg.cols, h = energy.cost_fg.rows;
-  cv::Mat state(energy.cost_fg.size(), CV_8U);
-  // The first row and column have no edge above or to the left: weight 0, added as such so the
-  // sums stay those of the formula. With them out of the loop and the state made by arithmetic
-  // on the two comparisons (not by branches), GCC vectorises it.
-  const std::vector<float> none(static_cast<size_t>(w), 0.f);
-  for (int y = 0; y < h; ++y) {
-    const float* rf = energy.cost_fg.ptr<float>(y);
-    const float* rb = energy.cost_bg.ptr<float>(y);
-    const float* right = energy.right.ptr<float>(y);
-    const float* down = energy.down.ptr<float>(y);
-    const float* up = y > 0 ? energy.down.ptr<float>(y - 1) : none.data();
-    uchar* s = state.ptr<uchar>(y);
-    auto decide = [&](int x, float left) {
-      const float edges = right[x] + down[x] + left + up[x];
-      const float prefer_fg = rb[x] - rf[x];
-      const bool fg = prefer_fg > edges, bg = prefer_fg < -edges;  // fg wins if both (edges < 0)
-      s[x] = static_cast<uchar>(fg * kFixedForeground + (!fg & bg) * kFixedBackground);
-    };
-    if (w > 0) decide(0, 0.f);
-    for (int x = 1; x < w; ++x) decide(x, right[x - 1]);
+namespace {
+
+// One row of decidedPixels(); `up` is the row above's down weights, none on the first row. The
+// first row and column have no edge above or to the left: weight 0, added as such so the sums
+// stay those of the formula. With them out of the loop and the state made by arithmetic on the
+// two comparisons (not by branches), GCC vectorises it.
+template <bool kHasUp>
+void decideRow(const GridEnergy& energy, int y, uchar* s) {
+  const float* rf = energy.cost_fg.ptr<float>(y);
+  const float* rb = energy.cost_bg.ptr<float>(y);
+  const float* right = energy.right.ptr<float>(y);
+  const float* down = energy.down.ptr<float>(y);
+  const float* up = kHasUp ? energy.down.ptr<float>(y - 1) : nullptr;
+  auto decide = [&](int x, float left) {
+    const float edges = right[x] + down[x] + left + (kHasUp ? up[x] : 0.f);
+    const float prefer_fg = rb[x] - rf[x];
+    const bool fg = prefer_fg > edges, bg = prefer_fg < -edges;  // fg wins if both (edges < 0)
+    s[x] = static_cast<uchar>(fg * kFixedForeground + (!fg & bg) * kFixedBackground);
+  };
+  const int w = energy.cost_fg.cols;
+  if (w > 0) decide(0, 0.f);
+  for (int x = 1; x < w; ++x) decide(x, right[x - 1]);
+}
+
+}  // namespace
+
+void decidedPixels(const GridEnergy& energy, cv::Mat* state) {
+  state->create(energy.cost_fg.size(), CV_8U);
+  for (int y = 0; y < state->rows; ++y) {
+    if (y == 0) {
+      decideRow<false>(energy, y, state->ptr<uchar>(y));
+    } else {
+      decideRow<true>(energy, y, state->ptr<uchar>(y));
+    }
   }
-  return state;
 }
 
 namespace {
@@ -100,8 +111,13 @@ cv::Mat blockState(const cv::Mat& state) {
 cv::Mat labelFreePixels(const GridEnergy& energy, const cv::Mat& state, MaxFlowSolver solver,
                         int* nodes, GridMaxFlow* memory) {
   if (solver == MaxFlowSolver::kGrid) {
-    if (memory) return memory->label(energy, state, nodes);
-    return GridMaxFlow().label(energy, state, nodes);
+    cv::Mat labels;
+    if (memory) {
+      memory->label(energy, state, nodes, &labels);
+    } else {
+      GridMaxFlow().label(energy, state, nodes, &labels);
+    }
+    return labels;
   }
   cv::Mat node;
   const FlowGraph graph = freePixelGraph(energy, state, &node);
@@ -190,8 +206,10 @@ float squaredStep(const cv::Vec3f& a, const cv::Vec3f& b) {
 }  // namespace
 
 float squaredColourSteps(const cv::Mat& colour, GridEnergy* energy) {
-  energy->right = cv::Mat::zeros(colour.size(), CV_32F);
-  energy->down = cv::Mat::zeros(colour.size(), CV_32F);
+  for (cv::Mat* steps : {&energy->right, &energy->down}) {
+    steps->create(colour.size(), CV_32F);
+    *steps = cv::Scalar::all(0);  // a memset, where setTo(0) allocates a copy of the scalar
+  }
   const int w = colour.cols, h = colour.rows;
   double sum = 0;
   for (int y = 0; y < h; ++y) {

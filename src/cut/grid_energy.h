@@ -17,7 +17,7 @@ struct GridEnergy {
                              // (0 in the last column / row)
 };
 
-// Fills energy->right and energy->down with |C_i - C_j|^2 between each pixel of `colour`
+// Fills energy->right and energy->down (in their buffers when of the size) with |C_i - C_j|^2 between each pixel of `colour`
 // (CV_32FC3) and its right and lower neighbour (0 where there is none), and returns GrabCut's
 // beta = 1 / (2 <|dC|^2>) over those edges (0 for a flat image): scaled by beta, a contrast term
 // reacts to the image's own contrast whatever its bit depth or dynamic range. The callers turn
@@ -29,8 +29,9 @@ enum PixelState : uchar { kFree = 0, kFixedBackground = 1, kFixedForeground = 2 
 
 // Exact reduction: a pixel whose unary preference |cost_bg - cost_fg| exceeds the sum of its
 // edge weights takes its preferred label in every minimum (flipping it would cost more than any
-// agreement it could buy), so it needs no node in the max-flow graph. CV_8U of PixelState.
-cv::Mat decidedPixels(const GridEnergy& energy);
+// agreement it could buy), so it needs no node in the max-flow graph. *state: CV_8U of
+// PixelState.
+void decidedPixels(const GridEnergy& energy, cv::Mat* state);
 
 // The labelling (CV_8U 0/255) that minimises the energy over the kFree pixels of `state`, the
 // others keeping their fixed label; a free pixel's edge to a fixed one becomes part of its

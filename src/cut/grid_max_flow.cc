@@ -321,22 +321,22 @@ class GridFlow {
 GridMaxFlow::GridMaxFlow() = default;
 GridMaxFlow::~GridMaxFlow() = default;
 
-cv::Mat GridMaxFlow::label(const GridEnergy& energy, const cv::Mat& state, int* nodes) {
+void GridMaxFlow::label(const GridEnergy& energy, const cv::Mat& state, int* nodes,
+                        cv::Mat* labels) {
   GridFlow flow(energy, state, &nodes_, &orphans_);
   flow.run();
-  cv::Mat labels(state.size(), CV_8U);
+  labels->create(state.size(), CV_8U);
   const int width = state.cols;  // a local, which the byte stores cannot change: GCC vectorises
   for (int y = 0; y < state.rows; ++y) {  // the fixed pixels' labels
     const uchar* s = state.ptr<uchar>(y);
-    uchar* out = labels.ptr<uchar>(y);
+    uchar* out = labels->ptr<uchar>(y);
     for (int x = 0; x < width; ++x) out[x] = s[x] == kFixedForeground ? 255 : 0;
   }
   *nodes = 0;
   forEachFreePixel(state, [&](int x, int y) {
     ++*nodes;
-    labels.at<uchar>(y, x) = flow.onSourceSide(x, y) ? 255 : 0;
+    labels->at<uchar>(y, x) = flow.onSourceSide(x, y) ? 255 : 0;
   });
-  return labels;
 }
 
 }  // namespace movseg

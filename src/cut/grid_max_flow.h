@@ -22,9 +22,9 @@ class GridMaxFlow {
   GridMaxFlow();
   ~GridMaxFlow();
 
-  // The labelling (CV_8U 0/255) that minimises `energy` over the kFree pixels of `state`, the
-  // others keeping their fixed label (as labelFreePixels). *nodes: the free pixels.
-  cv::Mat label(const GridEnergy& energy, const cv::Mat& state, int* nodes);
+  // The labelling (CV_8U 0/255, into *labels) that minimises `energy` over the kFree pixels of
+  // `state`, the others keeping their fixed label (as labelFreePixels). *nodes: the free pixels.
+  void label(const GridEnergy& energy, const cv::Mat& state, int* nodes, cv::Mat* labels);
 
   struct Node;  // a pixel's residual capacities and its place in the search trees
 

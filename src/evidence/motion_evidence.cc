@@ -16,10 +16,10 @@ constexpr float kMinResidualScale = 0.1f;
 
 }  // namespace
 
-float residualScale(std::vector<float> sample_residuals, const Params& params) {
-  if (sample_residuals.empty()) return kMinResidualScale;
-  const float upper = quantile(&sample_residuals, params.evidence_quantile);
-  const float median = quantile(&sample_residuals, 0.5);
+float residualScale(std::vector<float>* sample_residuals, const Params& params) {
+  if (sample_residuals->empty()) return kMinResidualScale;
+  const float upper = quantile(sample_residuals, params.evidence_quantile);
+  const float median = quantile(sample_residuals, 0.5);
   return std::max({upper, static_cast<float>(params.evidence_median_factor) * median,
                    kMinResidualScale});
 }

@@ -16,7 +16,8 @@ namespace movseg {
 // The residual that counts as "as large as the background's": the upper `evidence_quantile` of
 // the residual at the samples, at least `evidence_median_factor` times their median (a pair
 // whose samples hardly move must not read every flicker as motion) and a tenth of a pixel.
-float residualScale(std::vector<float> sample_residuals, const Params& params);
+// Reorders *sample_residuals.
+float residualScale(std::vector<float>* sample_residuals, const Params& params);
 
 // evidence = clip(gain * (residual / scale - offset), min, max), CV_32F.
 void motionEvidence(const cv::Mat& residual, float scale, const Params& params, cv::Mat* evidence);

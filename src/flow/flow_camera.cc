@@ -25,12 +25,13 @@ int reflected(int v, int n) {
   return v >= 0 && v < n ? v : cv::borderInterpolate(v, n, cv::BORDER_REFLECT_101);
 }
 
-float textureQuantile(const std::vector<GridSample>& samples, double q) {
+// `textures`: scratch.
+float textureQuantile(const std::vector<GridSample>& samples, double q,
+                      std::vector<float>* textures) {
   if (samples.empty()) return 0.f;
-  std::vector<float> textures;
-  textures.reserve(samples.size());
-  for (const GridSample& s : samples) textures.push_back(s.texture);
-  return quantile(&textures, q);
+  textures->clear();
+  for (const GridSample& s : samples) textures->push_back(s.texture);
+  return quantile(textures, q);
 }
 
 float squaredDistance(const cv::Point2f& x, const cv::Point2f& y) {
@@ -95,35 +96,6 @@ double shareWithThePlane(const std::vector<cv::Point2f>& x, const std::vector<cv
                   cv::norm(plane_step[i]) > options.max_error;
   }
   return agreeing == 0 ? 0.0 : static_cast<double>(with_plane) / static_cast<double>(agreeing);
-}
-
-std::optional<cv::Vec3d> findEpipole(const FlowCamera& camera, cv::Size size,
-                                     const RansacOptions& options, cv::RNG& rng) {
-  std::vector<cv::Point2f> x, y, plane_step;
-  for (size_t i = 0; i < camera.at.size(); ++i) {
-    const cv::Point2f on_plane = applyModel(camera.model, camera.at[i]);
-    if (cv::norm(camera.to[i] - on_plane) <= 2 * options.max_error) continue;
-    x.push_back(on_plane);
-    y.push_back(camera.to[i]);
-    plane_step.push_back(on_plane - camera.at[i]);
-  }
-  const double share = static_cast<double>(x.size()) / static_cast<double>(camera.at.size());
-  // Too few off the plane for either rule: no epipole to fit.
-  const double least_share = std::min(kDepthEverywhere.share, kDepthWithThePlane.share);
-  if (x.size() < kMinOffPlane || share < least_share) return std::nullopt;
-  const auto report = Ransac<EpipoleEstimator>(options).estimate(x, y, size, rng);
-  if (!report.success || report.num_inliers < kMinEpipoleAgreement * x.size()) return std::nullopt;
-  std::vector<double> residuals;
-  EpipoleEstimator::residuals(x, y, report.model, &residuals);
-  const int cells = CoverageSupportMeasurer(x, size)
-                        .evaluate(residuals, options.max_error * options.max_error)
-                        .cells;
-  const double with_share = shareWithThePlane(x, y, plane_step, residuals, options);
-  if (!shows(kDepthEverywhere, share, cells, with_share) &&
-      !shows(kDepthWithThePlane, share, cells, with_share)) {
-    return std::nullopt;
-  }
-  return report.model;
 }
 
 }  // namespace
@@ -219,52 +191,118 @@ float minEigenValueAt(const cv::Mat& grey, cv::Point p) {
   return static_cast<float>((a + c) - std::sqrt((a - c) * (a - c) + b * b));
 }
 
-std::vector<GridSample> gridSamples(const cv::Mat& grey, int step) {
-  std::vector<GridSample> samples;
+void gridSamples(const cv::Mat& grey, int step, std::vector<GridSample>* samples) {
+  samples->clear();
   for (int y = step / 2; y < grey.rows; y += step) {
     for (int x = step / 2; x < grey.cols; x += step) {
-      samples.push_back({{x, y}, minEigenValueAt(grey, {x, y})});
+      samples->push_back({{x, y}, minEigenValueAt(grey, {x, y})});
     }
   }
-  return samples;
 }
 
 FlowCamera fitFlowCamera(const cv::Mat& flow, const std::vector<GridSample>& grid,
                          const cv::Mat& moving, const Params& params, cv::RNG& rng,
                          const cv::Matx33d* previous_model) {
   FlowCamera camera;
-  const float flat = textureQuantile(grid, params.flow_texture_quantile);
-  size_t background = 0;
-  for (const GridSample& s : grid) {
-    if (s.texture < flat) continue;
-    const cv::Vec2f f = flow.at<cv::Vec2f>(s.at);
-    camera.at.emplace_back(s.at);
-    camera.to.emplace_back(static_cast<float>(s.at.x) + f[0], static_cast<float>(s.at.y) + f[1]);
-    camera.background.push_back(moving.empty() || moving.at<uchar>(s.at) <= 127);
-    background += camera.background.back();
-  }
-  if (background < std::max<size_t>(kMinBackgroundSamples,
-                                    static_cast<size_t>(kMinBackgroundShare * camera.at.size()))) {
-    std::fill(camera.background.begin(), camera.background.end(), 1);
-  }
-  if (params.static_camera) return camera;  // §4.1: the identity, nothing to fit
-  std::vector<cv::Point2f> x, y;
-  for (size_t i = 0; i < camera.at.size(); ++i) {
-    if (!camera.background[i]) continue;
-    x.push_back(camera.at[i]);
-    y.push_back(camera.to[i]);
-  }
+  FlowCameraFitter(params).fit(flow, grid, moving, rng, previous_model, &camera);
+  return camera;
+}
+
+namespace {
+
+RansacOptions ransacOptions(const Params& params) {
   RansacOptions options;
   options.max_trials = params.ransac_iterations;
   options.max_error = params.flow_inlier_distance;
   options.sample_grid = params.ransac_grid;
-  const auto report = Ransac<HomographyEstimator>(options).estimate(x, y, flow.size(), rng,
-                                                                    previous_model);
-  camera.fallback = !report.success;
-  if (report.success) camera.model = report.model;
-  if (report.success && params.parallax)
-    camera.epipole = findEpipole(camera, flow.size(), options, rng);
-  return camera;
+  return options;
+}
+
+}  // namespace
+
+FlowCameraFitter::FlowCameraFitter(const Params& params)
+    : params_(params),
+      options_(ransacOptions(params)),
+      homography_(options_),
+      epipole_(options_) {}
+
+void FlowCameraFitter::fit(const cv::Mat& flow, const std::vector<GridSample>& grid,
+                           const cv::Mat& moving, cv::RNG& rng,
+                           const cv::Matx33d* previous_model, FlowCamera* camera) {
+  camera->model = cv::Matx33d::eye();
+  camera->at.clear();
+  camera->to.clear();
+  camera->background.clear();
+  camera->fallback = false;
+  camera->epipole.reset();
+  // An element per sample at most: reserved at once, the vectors do not grow pair after pair as
+  // more samples are kept.
+  for (auto* points : {&camera->at, &camera->to, &x_, &y_, &plane_step_}) {
+    points->reserve(grid.size());
+  }
+  camera->background.reserve(grid.size());
+  residuals_.reserve(grid.size());
+  coverage_.reserve(grid.size());
+  homography_.reserve(grid.size());
+  epipole_.reserve(grid.size());
+  const float flat = textureQuantile(grid, params_.flow_texture_quantile, &textures_);
+  size_t background = 0;
+  for (const GridSample& s : grid) {
+    if (s.texture < flat) continue;
+    const cv::Vec2f f = flow.at<cv::Vec2f>(s.at);
+    camera->at.emplace_back(s.at);
+    camera->to.emplace_back(static_cast<float>(s.at.x) + f[0], static_cast<float>(s.at.y) + f[1]);
+    camera->background.push_back(moving.empty() || moving.at<uchar>(s.at) <= 127);
+    background += camera->background.back();
+  }
+  if (background < std::max<size_t>(kMinBackgroundSamples,
+                                    static_cast<size_t>(kMinBackgroundShare * camera->at.size()))) {
+    std::fill(camera->background.begin(), camera->background.end(), 1);
+  }
+  if (params_.static_camera) return;  // §4.1: the identity, nothing to fit
+  x_.clear();
+  y_.clear();
+  for (size_t i = 0; i < camera->at.size(); ++i) {
+    if (!camera->background[i]) continue;
+    x_.push_back(camera->at[i]);
+    y_.push_back(camera->to[i]);
+  }
+  const auto& report = homography_.estimate(x_, y_, flow.size(), rng, previous_model);
+  camera->fallback = !report.success;
+  if (report.success) camera->model = report.model;
+  if (report.success && params_.parallax) camera->epipole = findEpipole(*camera, flow.size(), rng);
+}
+
+std::optional<cv::Vec3d> FlowCameraFitter::findEpipole(const FlowCamera& camera, cv::Size size,
+                                                       cv::RNG& rng) {
+  x_.clear();
+  y_.clear();
+  plane_step_.clear();
+  for (size_t i = 0; i < camera.at.size(); ++i) {
+    const cv::Point2f on_plane = applyModel(camera.model, camera.at[i]);
+    if (cv::norm(camera.to[i] - on_plane) <= 2 * options_.max_error) continue;
+    x_.push_back(on_plane);
+    y_.push_back(camera.to[i]);
+    plane_step_.push_back(on_plane - camera.at[i]);
+  }
+  const double share = static_cast<double>(x_.size()) / static_cast<double>(camera.at.size());
+  // Too few off the plane for either rule: no epipole to fit.
+  const double least_share = std::min(kDepthEverywhere.share, kDepthWithThePlane.share);
+  if (x_.size() < kMinOffPlane || share < least_share) return std::nullopt;
+  const auto& report = epipole_.estimate(x_, y_, size, rng);
+  if (!report.success || report.num_inliers < kMinEpipoleAgreement * x_.size()) {
+    return std::nullopt;
+  }
+  EpipoleEstimator::residuals(x_, y_, report.model, &residuals_);
+  coverage_.reset(x_, size);
+  const int cells =
+      coverage_.evaluate(residuals_, options_.max_error * options_.max_error).cells;
+  const double with_share = shareWithThePlane(x_, y_, plane_step_, residuals_, options_);
+  if (!shows(kDepthEverywhere, share, cells, with_share) &&
+      !shows(kDepthWithThePlane, share, cells, with_share)) {
+    return std::nullopt;
+  }
+  return report.model;
 }
 
 void residualMotion(const cv::Mat& flow_map, const cv::Mat& camera_map, const FlowCamera& camera,
@@ -307,12 +345,11 @@ void cameraMap(const cv::Matx33d& model, cv::Size size, cv::Mat* map) {
   }
 }
 
-std::vector<float> residualAtSamples(const FlowCamera& camera) {
-  std::vector<float> residual(camera.at.size());
+void residualAtSamples(const FlowCamera& camera, std::vector<float>* residuals) {
+  residuals->resize(camera.at.size());
   for (size_t i = 0; i < camera.at.size(); ++i) {
-    residual[i] = residualOf(applyModel(camera.model, camera.at[i]), camera.to[i], camera);
+    (*residuals)[i] = residualOf(applyModel(camera.model, camera.at[i]), camera.to[i], camera);
   }
-  return residual;
 }
 
 }  // namespace movseg

@@ -8,6 +8,9 @@
 
 #include <opencv2/core.hpp>
 
+#include "motion/estimators.h"
+#include "motion/ransac.h"
+#include "motion/support.h"
 #include "movseg/params.h"
 
 namespace movseg {
@@ -29,9 +32,10 @@ struct GridSample {
   float texture;
 };
 
-// Every `step` pixels of `grey` (CV_8U, the current frame), with their minEigenValueAt. Needs the
+// Every `step` pixels of `grey` (CV_8U, the current frame), with their minEigenValueAt, into
+// `samples`. Needs the
 // frame alone, so it is made with the flow, before the previous mask is known.
-std::vector<GridSample> gridSamples(const cv::Mat& grey, int step);
+void gridSamples(const cv::Mat& grey, int step, std::vector<GridSample>* samples);
 
 // Samples `flow` (CV_32FC2, current -> previous) at the `grid` samples whose texture is above
 // its lower `params.flow_texture_quantile` — flat pixels carry no flow information — and fits a
@@ -44,6 +48,31 @@ std::vector<GridSample> gridSamples(const cv::Mat& grey, int step);
 FlowCamera fitFlowCamera(const cv::Mat& flow, const std::vector<GridSample>& grid,
                          const cv::Mat& moving, const Params& params, cv::RNG& rng,
                          const cv::Matx33d* previous_model = nullptr);
+
+// fitFlowCamera in buffers kept from one pair to the next, its RANSACs' among them: at a fixed
+// frame size a fit allocates nothing once a few pairs have been fitted.
+class FlowCameraFitter {
+ public:
+  explicit FlowCameraFitter(const Params& params);
+
+  // fitFlowCamera's camera, written over `camera` (whose vectors are reused).
+  void fit(const cv::Mat& flow, const std::vector<GridSample>& grid, const cv::Mat& moving,
+           cv::RNG& rng, const cv::Matx33d* previous_model, FlowCamera* camera);
+
+ private:
+  std::optional<cv::Vec3d> findEpipole(const FlowCamera& camera, cv::Size size, cv::RNG& rng);
+
+  Params params_;
+  RansacOptions options_;
+  Ransac<HomographyEstimator> homography_;
+  Ransac<EpipoleEstimator> epipole_;
+  CoverageSupportMeasurer coverage_;
+  // Scratch: the samples' textures, the correspondences given to a RANSAC, the off-plane
+  // samples' steps with the plane and their residuals to the epipole.
+  std::vector<float> textures_;
+  std::vector<cv::Point2f> x_, y_, plane_step_;
+  std::vector<double> residuals_;
+};
 
 // The smaller eigenvalue of the structure tensor over the 5x5 window at `p` of `grey` (CV_8U),
 // as cv::cornerMinEigenVal(grey, _, 5) gives it there: 3x3 Sobel gradients, reflected borders.
@@ -61,7 +90,7 @@ void residualMotion(const cv::Mat& flow_map, const cv::Mat& camera_map, const Fl
 void flowMap(const cv::Mat& flow, cv::Mat* map);
 void cameraMap(const cv::Matx33d& model, cv::Size size, cv::Mat* map);
 
-// The same at the samples of `camera`.
-std::vector<float> residualAtSamples(const FlowCamera& camera);
+// The same at the samples of `camera`, into `residuals`.
+void residualAtSamples(const FlowCamera& camera, std::vector<float>* residuals);
 
 }  // namespace movseg

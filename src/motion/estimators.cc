@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include <Eigen/Eigenvalues>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -9,6 +10,23 @@
 
 namespace movseg {
 namespace {
+
+// OpenCV built with Eigen (as Ubuntu's and Debian's are) solves in cv::eigen with Eigen's
+// SelfAdjointEigenSolver on a dynamic-size matrix, on the heap. The same solver on a dynamic-size
+// matrix of fixed capacity takes the same steps without allocating (tests/motion compares the
+// two).
+template <int n>
+bool smallestEigenvectorOf(const cv::Matx<double, n, n>& m, cv::Vec<double, n>* vector) {
+  using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, n, n>;
+  Matrix a(n, n);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) a(i, j) = m(i, j);
+  }
+  const Eigen::SelfAdjointEigenSolver<Matrix> solver(a);
+  if (solver.info() != Eigen::Success) return false;
+  for (int i = 0; i < n; ++i) (*vector)[i] = solver.eigenvectors()(i, 0);  // ascending values
+  return true;
+}
 
 void squaredTransferErrors(const std::vector<cv::Point2f>& x, const std::vector<cv::Point2f>& y,
                            const cv::Matx33d& model, std::vector<double>* residuals) {
@@ -20,6 +38,14 @@ void squaredTransferErrors(const std::vector<cv::Point2f>& x, const std::vector<
 }
 
 }  // namespace
+
+bool smallestEigenvector(const cv::Matx33d& m, cv::Vec3d* vector) {
+  return smallestEigenvectorOf(m, vector);
+}
+
+bool smallestEigenvector(const cv::Matx<double, 9, 9>& m, cv::Vec<double, 9>* vector) {
+  return smallestEigenvectorOf(m, vector);
+}
 
 // Least squares (exact for 3 points) through the normal equations of [x y 1] * row = target,
 // in coordinates centred on the points' mean so the system stays well conditioned.
@@ -88,12 +114,32 @@ bool leastSquaresHomography(const std::vector<cv::Point2f>& x, const std::vector
   for (int a = 0; a < 9; ++a) {
     for (int b = 0; b < a; ++b) ata(a, b) = ata(b, a);
   }
-  cv::Matx<double, 9, 1> values;
-  cv::Matx<double, 9, 9> vectors;
-  if (!cv::eigen(ata, values, vectors)) return false;
-  const cv::Matx33d h(vectors(8, 0), vectors(8, 1), vectors(8, 2), vectors(8, 3), vectors(8, 4),
-                      vectors(8, 5), vectors(8, 6), vectors(8, 7), vectors(8, 8));
-  *model = ty.inv() * h * tx;
+  cv::Vec<double, 9> h;
+  if (!smallestEigenvector(ata, &h)) return false;
+  *model = ty.inv() * cv::Matx33d(h.val) * tx;
+  return true;
+}
+
+// cv::getPerspectiveTransform's homography through four points, to the bit: its 8x8 system
+// (products of floats, as it forms them) solved by the same LU, on fixed-size matrices that
+// need no allocation where its cv::Mat result does. False when the system is singular.
+bool homographyThroughFour(const std::vector<cv::Point2f>& x, const std::vector<cv::Point2f>& y,
+                           cv::Matx33d* model) {
+  cv::Matx<double, 8, 8> a = cv::Matx<double, 8, 8>::zeros();
+  cv::Vec<double, 8> b, h;
+  for (int i = 0; i < 4; ++i) {
+    a(i, 0) = a(i + 4, 3) = x[i].x;
+    a(i, 1) = a(i + 4, 4) = x[i].y;
+    a(i, 2) = a(i + 4, 5) = 1;
+    a(i, 6) = -x[i].x * y[i].x;
+    a(i, 7) = -x[i].y * y[i].x;
+    a(i + 4, 6) = -x[i].x * y[i].y;
+    a(i + 4, 7) = -x[i].y * y[i].y;
+    b[i] = y[i].x;
+    b[i + 4] = y[i].y;
+  }
+  if (!cv::solve(a, b, h, cv::DECOMP_LU)) return false;
+  *model = cv::Matx33d(h[0], h[1], h[2], h[3], h[4], h[5], h[6], h[7], 1);
   return true;
 }
 
@@ -103,10 +149,7 @@ bool HomographyEstimator::estimate(const std::vector<cv::Point2f>& x,
                                    const std::vector<cv::Point2f>& y, cv::Matx33d* model) {
   if (x.size() < kMinNumSamples || x.size() != y.size()) return false;
   if (x.size() == kMinNumSamples) {
-    // A degenerate sample (three collinear points) makes OpenCV return an empty matrix.
-    const cv::Mat h = cv::getPerspectiveTransform(x, y);
-    if (h.empty()) return false;
-    *model = cv::Matx33d(h);
+    if (!homographyThroughFour(x, y, model)) return false;
   } else if (!leastSquaresHomography(x, y, model)) {
     return false;
   }
@@ -154,10 +197,7 @@ bool EpipoleEstimator::estimate(const std::vector<cv::Point2f>& x,
     const cv::Vec3d l = lineThrough(x[i], y[i]);
     scatter += l * l.t();
   }
-  cv::Mat values, vectors;
-  if (!cv::eigen(cv::Mat(scatter), values, vectors)) return false;
-  *model = cv::Vec3d(vectors.at<double>(2, 0), vectors.at<double>(2, 1), vectors.at<double>(2, 2));
-  return true;
+  return smallestEigenvector(scatter, model);
 }
 
 double EpipoleEstimator::offLine(const cv::Point2f& x, const cv::Point2f& y,

@@ -48,4 +48,10 @@ struct EpipoleEstimator {
   static double offLine(const cv::Point2f& x, const cv::Point2f& y, const Model& epipole);
 };
 
+// The unit eigenvector of the smallest eigenvalue of the symmetric `m`, to the bit as cv::eigen
+// gives it where OpenCV is built with Eigen, without allocating; false when the solver fails.
+// The least-squares fits' (3x3 for the epipole, 9x9 for the homography).
+bool smallestEigenvector(const cv::Matx33d& m, cv::Vec3d* vector);
+bool smallestEigenvector(const cv::Matx<double, 9, 9>& m, cv::Vec<double, 9>* vector);
+
 }  // namespace movseg

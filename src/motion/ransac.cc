@@ -6,8 +6,9 @@
 namespace movseg {
 
 void RansacOptions::check() const {
-  auto require = [](bool ok, const std::string& what) {
-    if (!ok) throw std::invalid_argument("invalid RANSAC option: " + what);
+  // The message is made only for an option out of range: a check allocates nothing.
+  auto require = [](bool ok, const char* what) {
+    if (!ok) throw std::invalid_argument(std::string("invalid RANSAC option: ") + what);
   };
   require(max_trials >= 1, "max_trials must be at least 1");
   require(std::isfinite(max_error) && max_error > 0, "max_error must be positive");

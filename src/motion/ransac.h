@@ -57,30 +57,48 @@ class Ransac {
 
   explicit Ransac(const RansacOptions& options) : options_(options) { options_.check(); }
 
+  // Storage for as many correspondences, so that calls with up to that many, however many each
+  // has, allocate nothing.
+  void reserve(size_t points) {
+    report_.inlier_mask.reserve(points);
+    measurer_.reserve(points);
+    sampler_.reserve(points);
+    residuals_.reserve(points);
+    mask_.reserve(points);
+    ix_.reserve(points);
+    iy_.reserve(points);
+  }
+
   // x[i] (previous frame) corresponds to y[i] (current frame); both lie in an image of
   // `image_size`. `initial`, when given, is scored before any sample is drawn (a warm start).
-  Report estimate(const std::vector<cv::Point2f>& x, const std::vector<cv::Point2f>& y,
-                  cv::Size image_size, cv::RNG& rng, const Model* initial = nullptr) const {
-    Report report;
+  // The report is the loop's own, valid until the next call: its buffers, and the sampler's
+  // and the measurer's, are reused, so that a Ransac kept from frame to frame allocates nothing
+  // once it has seen as many points.
+  const Report& estimate(const std::vector<cv::Point2f>& x, const std::vector<cv::Point2f>& y,
+                         cv::Size image_size, cv::RNG& rng, const Model* initial = nullptr) {
+    Report& report = report_;
+    report.success = false;
+    report.trials = 0;
+    report.model = Model{};
+    report.num_inliers = 0;
+    report.inlier_mask.clear();
     const int n = static_cast<int>(x.size());
     if (n < kMinNumSamples) return report;
 
-    const SupportMeasurer measurer(x, image_size);
+    measurer_.reset(x, image_size);
     Best best;
-    if (initial != nullptr) consider(x, y, *initial, measurer, &best);
-    const Sampler sampler(x, image_size, options_.sample_grid);
-    std::vector<int> sample;
-    std::vector<cv::Point2f> sx(kMinNumSamples), sy(kMinNumSamples);
+    if (initial != nullptr) consider(x, y, *initial, &best);
+    sampler_.reset(x, image_size, options_.sample_grid);
     int needed = options_.max_trials;
     for (report.trials = 0; report.trials < needed; ++report.trials) {
-      sampler.sample(kMinNumSamples, rng, &sample);
+      sampler_.sample(kMinNumSamples, rng, &sample_);
       for (int k = 0; k < kMinNumSamples; ++k) {
-        sx[k] = x[static_cast<size_t>(sample[k])];
-        sy[k] = y[static_cast<size_t>(sample[k])];
+        sx_[k] = x[static_cast<size_t>(sample_[k])];
+        sy_[k] = y[static_cast<size_t>(sample_[k])];
       }
       Model model;
-      if (!Estimator::estimate(sx, sy, &model)) continue;
-      if (consider(x, y, model, measurer, &best)) needed = trialsFor(best.support.num_inliers, n);
+      if (!Estimator::estimate(sx_, sy_, &model)) continue;
+      if (consider(x, y, model, &best)) needed = trialsFor(best.support.num_inliers, n);
     }
     if (best.support.num_inliers < kMinNumSamples) return report;
     report.model = best.model;
@@ -99,9 +117,9 @@ class Ransac {
 
   // Keeps `model` when its support beats the best so far.
   bool consider(const std::vector<cv::Point2f>& x, const std::vector<cv::Point2f>& y,
-                const Model& model, const SupportMeasurer& measurer, Best* best) const {
+                const Model& model, Best* best) {
     Estimator::residuals(x, y, model, &residuals_);
-    const auto support = measurer.evaluate(residuals_, maxSquaredError());
+    const auto support = measurer_.evaluate(residuals_, maxSquaredError());
     if (!SupportMeasurer::better(support, best->support)) return false;
     *best = {support, model};
     return true;
@@ -109,7 +127,7 @@ class Ransac {
 
   // The inlier mask of `model` and the number of inliers.
   int inliers(const std::vector<cv::Point2f>& x, const std::vector<cv::Point2f>& y,
-              const Model& model, std::vector<char>* mask) const {
+              const Model& model, std::vector<char>* mask) {
     Estimator::residuals(x, y, model, &residuals_);
     mask->resize(x.size());
     int count = 0;
@@ -120,20 +138,18 @@ class Ransac {
   // Least squares on the inliers, twice: the refit model may gain inliers the sample missed.
   // False when a round finds too few inliers to fit; a degenerate refit keeps the model.
   bool refit(const std::vector<cv::Point2f>& x, const std::vector<cv::Point2f>& y,
-             Model* model) const {
-    std::vector<char> mask;
-    std::vector<cv::Point2f> ix, iy;
+             Model* model) {
     for (int round = 0; round < 2; ++round) {
-      if (inliers(x, y, *model, &mask) < kMinNumSamples) return false;
-      ix.clear();
-      iy.clear();
+      if (inliers(x, y, *model, &mask_) < kMinNumSamples) return false;
+      ix_.clear();
+      iy_.clear();
       for (size_t i = 0; i < x.size(); ++i) {
-        if (!mask[i]) continue;
-        ix.push_back(x[i]);
-        iy.push_back(y[i]);
+        if (!mask_[i]) continue;
+        ix_.push_back(x[i]);
+        iy_.push_back(y[i]);
       }
       Model fitted;
-      if (!Estimator::estimate(ix, iy, &fitted)) return true;
+      if (!Estimator::estimate(ix_, iy_, &fitted)) return true;
       *model = fitted;
     }
     return true;
@@ -149,7 +165,16 @@ class Ransac {
   }
 
   RansacOptions options_;
-  mutable std::vector<double> residuals_;  // scratch, reused across hypotheses
+  Report report_;
+  // Scratch, reused across hypotheses and calls.
+  SupportMeasurer measurer_;
+  Sampler sampler_;
+  std::vector<int> sample_;
+  std::vector<cv::Point2f> sx_ = std::vector<cv::Point2f>(kMinNumSamples);
+  std::vector<cv::Point2f> sy_ = std::vector<cv::Point2f>(kMinNumSamples);
+  std::vector<double> residuals_;
+  std::vector<char> mask_;            // refit()'s inliers
+  std::vector<cv::Point2f> ix_, iy_;  // and their correspondences
 };
 
 }  // namespace movseg

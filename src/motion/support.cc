@@ -6,8 +6,12 @@
 namespace movseg {
 
 CoverageSupportMeasurer::CoverageSupportMeasurer(const std::vector<cv::Point2f>& points,
-                                                 cv::Size image_size)
-    : cell_(points.size()) {
+                                                 cv::Size image_size) {
+  reset(points, image_size);
+}
+
+void CoverageSupportMeasurer::reset(const std::vector<cv::Point2f>& points, cv::Size image_size) {
+  cell_.resize(points.size());
   for (size_t i = 0; i < points.size(); ++i) {
     const int cx = std::clamp(static_cast<int>(points[i].x * kGrid / image_size.width), 0, kGrid - 1);
     const int cy = std::clamp(static_cast<int>(points[i].y * kGrid / image_size.height), 0, kGrid - 1);

@@ -19,8 +19,15 @@ class CoverageSupportMeasurer {
     int num_inliers = 0;
   };
 
+  CoverageSupportMeasurer() = default;
   // `points`: where the correspondences lie, in an image of `image_size`.
   CoverageSupportMeasurer(const std::vector<cv::Point2f>& points, cv::Size image_size);
+
+  // The same for a new set of points, in the storage of the last.
+  void reset(const std::vector<cv::Point2f>& points, cv::Size image_size);
+
+  // Storage for as many points, so that no reset up to that many allocates.
+  void reserve(size_t points) { cell_.reserve(points); }
 
   // The support of a hypothesis whose squared residuals are `residuals`.
   Support evaluate(const std::vector<double>& residuals, double max_residual) const;

@@ -13,7 +13,6 @@
 #include "core/frame.h"
 #include "core/timing.h"
 #include "cut/evidence_cut.h"
-#include "cut/grid_max_flow.h"
 #include "evidence/colour_model.h"
 #include "evidence/motion_evidence.h"
 #include "flow/dense_flow.h"
@@ -85,14 +84,25 @@ bool isSceneCutUnderCamera(const cv::Mat& bgr, const cv::Mat& previous_bgr,
 // The residuals at the samples the photometric check does not confirm as moving (less than
 // half confirmed): the background's, whatever the movers' share of the frame, so that the
 // scale is the background's spread and not the movers' speed. When nearly everything is
-// confirmed (under a quarter left), the check says nothing and all samples count.
-std::vector<float> unconfirmedResiduals(const FlowCamera& camera, const cv::Mat& confirmation) {
-  const std::vector<float> all = residualAtSamples(camera);
-  std::vector<float> kept;
-  for (size_t i = 0; i < all.size(); ++i) {
-    if (confirmation.at<float>(cv::Point(camera.at[i])) < 0.5f) kept.push_back(all[i]);
+// confirmed (under a quarter left), the check says nothing and all samples count. Returns `all`
+// or `kept`, where they are written.
+std::vector<float>* unconfirmedResiduals(const FlowCamera& camera, const cv::Mat& confirmation,
+                                         std::vector<float>* all, std::vector<float>* kept) {
+  residualAtSamples(camera, all);
+  kept->clear();
+  for (size_t i = 0; i < all->size(); ++i) {
+    if (confirmation.at<float>(cv::Point(camera.at[i])) < 0.5f) kept->push_back((*all)[i]);
   }
-  return kept.size() >= all.size() / 4 ? kept : all;
+  return kept->size() >= all->size() / 4 ? kept : all;
+}
+
+// *unary += bias, in floats as cv::add adds it, without the copy of the scalar cv::add allocates.
+void addBias(double bias, cv::Mat* unary) {
+  const auto b = static_cast<float>(bias);
+  for (int y = 0; y < unary->rows; ++y) {
+    float* u = unary->ptr<float>(y);
+    for (int x = 0; x < unary->cols; ++x) u[x] += b;
+  }
 }
 
 // Depth read from one pair may be movers agreeing on an epipole by chance, or water; a translating
@@ -116,7 +126,11 @@ class PersistentDepth {
 class DensePipeline : public Pipeline {
  public:
   explicit DensePipeline(const Params& params)
-      : params_(params), flow_(params.flow_finest_scale), colour_(params), rng_(params.seed) {}
+      : params_(params),
+        flow_(params.flow_finest_scale),
+        camera_fitter_(params),
+        colour_(params),
+        rng_(params.seed) {}
 
   std::unique_ptr<Analysis> newAnalysis() const override {
     return std::make_unique<DenseAnalysis>();
@@ -137,7 +151,7 @@ class DensePipeline : public Pipeline {
     } else {
       a.input_grey.release();
     }
-    a.samples = gridSamples(a.grey, params_.flow_sample_step);
+    gridSamples(a.grey, params_.flow_sample_step, &a.samples);
     blockContrast(a.bgr, params_.smoothness, &a.contrast);
     a.prepare_ms = millisecondsSince(start);
     start = Clock::now();
@@ -157,10 +171,12 @@ class DensePipeline : public Pipeline {
     input_size_ = a.input_size;
     if (a.first_frame || a.flow.empty()) return forget(a.bgr.size());
     Clock::time_point start = Clock::now();
-    cv::Mat carried, evidence;
+    cv::Mat& carried = carried_;
+    cv::Mat& evidence = evidence_;
     photometric_.followFlow(previous_.grey, mask_, a.flow_map, &carried);
-    FlowCamera camera = fitFlowCamera(a.flow, a.samples, carried, params_, rng_,
-                                      last_model_ ? &*last_model_ : nullptr);
+    FlowCamera& camera = camera_;
+    camera_fitter_.fit(a.flow, a.samples, carried, rng_, last_model_ ? &*last_model_ : nullptr,
+                       &camera);
     if (!camera.fallback) last_model_ = camera.model;
     depth_.settle(&camera);
     cameraMap(camera.model, a.grey.size(), &camera_map_);
@@ -175,7 +191,10 @@ class DensePipeline : public Pipeline {
     diag.scene_cut = isSceneCutUnderCamera(a.bgr, previous_.bgr, camera_map_);
     if (diag.scene_cut) return forget(a.bgr.size());
     photometric_.confirm(a.grey, camera_map_, params_, &confirmation_);
-    const float scale = residualScale(unconfirmedResiduals(camera, confirmation_), params_);
+    sample_residuals_.reserve(a.samples.size());  // at most one per sample: they do not grow
+    unconfirmed_.reserve(a.samples.size());
+    const float scale = residualScale(
+        unconfirmedResiduals(camera, confirmation_, &sample_residuals_, &unconfirmed_), params_);
     diag.residual_scale = scale;
     motionEvidence(residual_, scale, params_, &evidence);
     confirmMotion(confirmation_, &evidence);
@@ -189,14 +208,14 @@ class DensePipeline : public Pipeline {
     });
     evidence.copyTo(pair_evidence_);
     if (!carried.empty()) addMemory(carried, params_, &evidence);
-    cv::Mat unary;
+    cv::Mat& unary = unary_;
     colour_.addEvidence(a.bgr, evidence, &unary);
-    unary += params_.foreground_bias;
+    addBias(params_.foreground_bias, &unary);
     colour_.update(a.bgr, evidence, pair_evidence_);
     diag.classify_ms = millisecondsSince(start);
 
     start = Clock::now();
-    mask_ = cutEvidence(unary, a.contrast, &max_flow_, &diag.cut_nodes);
+    cut_.cut(unary, a.contrast, &diag.cut_nodes, &mask_);
     const cv::Mat mask = edge_snap_.snap(mask_, a.grey, params_.edge_snap, a.input_grey);
     diag.cut_ms = millisecondsSince(start);
     debug.put("residual", [&] {  // mid-grey: as large as the background's residual in this pair
@@ -205,7 +224,7 @@ class DensePipeline : public Pipeline {
       return picture;
     });
     debug.put("carried", [&] {  // the previous mask brought here by the flow: the memory
-      return carried.empty() ? cv::Mat(cv::Mat::zeros(a.grey.size(), CV_8U)) : carried;
+      return carried.empty() ? cv::Mat(cv::Mat::zeros(a.grey.size(), CV_8U)) : carried.clone();
     });
     debug.put("confirmation", [&] {
       cv::Mat picture;
@@ -218,8 +237,9 @@ class DensePipeline : public Pipeline {
       return picture;
     });
     debug.put("edges", [&] {  // at the size of the mask returned
-      return drawEdgeSnap(a.input_grey.empty() ? a.grey : a.input_grey,
-                          upscaledMask(mask_, mask.size()), mask);
+      cv::Mat cut;
+      upscaledMask(mask_, mask.size(), &cut);
+      return drawEdgeSnap(a.input_grey.empty() ? a.grey : a.input_grey, cut, mask);
     });
     return mask;
   }
@@ -257,14 +277,18 @@ class DensePipeline : public Pipeline {
 
   Params params_;
   DenseFlow flow_;
+  FlowCameraFitter camera_fitter_;
+  FlowCamera camera_;  // the pair's, in the buffers of the last
+  std::vector<float> sample_residuals_, unconfirmed_;  // scratch of unconfirmedResiduals()
   ColourModel colour_;
   cv::RNG rng_;
   cv::Mat mask_;  // the last frame's, at the working scale
-  cv::Mat residual_, confirmation_;
+  // The pair's images, in the buffers of the last pair's.
+  cv::Mat carried_, evidence_, unary_, residual_, confirmation_;
   cv::Mat pair_evidence_;  // the pair's evidence before memory, for the colour model
   cv::Mat camera_map_;
   PhotometricCheck photometric_;
-  GridMaxFlow max_flow_;
+  EvidenceCut cut_;
   EdgeSnap edge_snap_;
   PersistentDepth depth_;
   // The last fitted camera model, the next fit's warm start: a pair that fell back to the

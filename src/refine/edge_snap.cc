@@ -1,5 +1,8 @@
 #include "refine/edge_snap.h"
 
+#include <algorithm>
+#include <vector>
+
 #include <opencv2/imgproc.hpp>
 
 #include "core/frame.h"
@@ -66,6 +69,55 @@ void windowMean(const cv::Mat& src, int radius, std::vector<float>* scratch, cv:
   }
 }
 
+// `*image` made a view of `size` into a buffer of `whole` size and `type`, the buffer of the last
+// call reused: the outline's region changes size from frame to frame, its images' buffers do not.
+void regionView(cv::Size whole, cv::Size size, int type, cv::Mat* image) {
+  if (!image->empty()) image->adjustROI(whole.height, whole.height, whole.width, whole.width);
+  image->create(whole, type);
+  *image = (*image)(cv::Rect({0, 0}, size));
+}
+
+// One row of a 3x3 cross's erosion (Op std::min) or dilation (std::max): out[x] is the extreme
+// of line[x], line[x + 1] and line[x + 2] (the row, one pixel past each end) and of above[x] and
+// below[x].
+template <const uchar& (*Op)(const uchar&, const uchar&)>
+void crossRow(const uchar* above, const uchar* line, const uchar* below, int width, uchar* out) {
+  for (int x = 0; x < width; ++x) {
+    out[x] = Op(Op(Op(line[x], line[x + 2]), line[x + 1]), Op(above[x], below[x]));
+  }
+}
+
+// cv::morphologyEx(mask(region), *opened, MORPH_OPEN) with a 3x3 cross, without the filter
+// engines OpenCV builds (and allocates) on every call; min and max make it exact. As OpenCV's,
+// the erosion reads the mask around the region (a region's parent image) and 255 past the
+// mask's edges, the dilation 0 past the region's. `line`, `edge` and `eroded`: scratch.
+void openWithCross(const cv::Mat& mask, cv::Rect region, std::vector<uchar>* line,
+                   std::vector<uchar>* edge, cv::Mat* eroded, cv::Mat* opened) {
+  const int w = region.width, h = region.height;
+  line->resize(static_cast<size_t>(w) + 2);
+  edge->assign(static_cast<size_t>(w), 255);
+  for (int y = 0; y < h; ++y) {
+    const int at = region.y + y;
+    const uchar* row = mask.ptr<uchar>(at) + region.x;
+    const uchar* above = at > 0 ? mask.ptr<uchar>(at - 1) + region.x : edge->data();
+    const uchar* below = at + 1 < mask.rows ? mask.ptr<uchar>(at + 1) + region.x : edge->data();
+    (*line)[0] = region.x > 0 ? row[-1] : 255;
+    std::copy(row, row + w, line->data() + 1);
+    (*line)[static_cast<size_t>(w) + 1] = region.x + w < mask.cols ? row[w] : 255;
+    crossRow<std::min<uchar>>(above, line->data(), below, w, eroded->ptr<uchar>(y));
+  }
+  edge->assign(static_cast<size_t>(w), 0);
+  for (int y = 0; y < h; ++y) {
+    const uchar* row = eroded->ptr<uchar>(y);
+    const uchar* above = y > 0 ? eroded->ptr<uchar>(y - 1) : edge->data();
+    const uchar* below = y + 1 < h ? eroded->ptr<uchar>(y + 1) : edge->data();
+    (*line)[0] = 0;
+    std::copy(row, row + w, line->data() + 1);
+    (*line)[static_cast<size_t>(w) + 1] = 0;
+    crossRow<std::max<uchar>>(above, line->data(), below, w, opened->ptr<uchar>(y));
+  }
+}
+
 }  // namespace
 
 cv::Mat EdgeSnap::snap(const cv::Mat& mask, const cv::Mat& grey, int radius,
@@ -77,7 +129,17 @@ cv::Mat EdgeSnap::snap(const cv::Mat& mask, const cv::Mat& grey, int radius,
   const cv::Rect region = radius > 0 ? outlineRegion(mask, radius) : cv::Rect();
   // A region narrower than a window is an image that small: its outline stays.
   if (region.width <= 2 * radius || region.height <= 2 * radius) {
-    return output_grey.empty() ? mask : scaledMask(mask, output_grey.size());
+    if (output_grey.empty()) return mask;
+    scaledMask(mask, output_grey.size(), &finer_);
+    return finer_;
+  }
+  for (cv::Mat* image : {&guide_, &square_, &label_, &masked_guide_, &mean_guide_, &mean_square_,
+                         &mean_label_, &mean_masked_guide_, &slope_, &offset_, &mean_slope_,
+                         &mean_offset_}) {
+    regionView(mask.size(), region.size(), CV_32F, image);
+  }
+  for (cv::Mat* image : {&eroded_, &opened_, &state_}) {
+    regionView(mask.size(), region.size(), CV_8U, image);
   }
   grey(region).convertTo(guide_, CV_32F);
   mask(region).convertTo(label_, CV_32F, 1.0 / 255);
@@ -89,8 +151,6 @@ cv::Mat EdgeSnap::snap(const cv::Mat& mask, const cv::Mat& grey, int radius,
   windowMean(masked_guide_, radius, &scratch_, &mean_masked_guide_);
   // Each window's least-squares line label = slope * grey + offset, regularised by kRegulariser;
   // a window of one label keeps it (slope 0).
-  slope_.create(guide_.size(), CV_32F);
-  offset_.create(guide_.size(), CV_32F);
   for (int y = 0; y < guide_.rows; ++y) {
     const float* grey_mean = mean_guide_.ptr<float>(y);
     const float* square = mean_square_.ptr<float>(y);
@@ -110,16 +170,14 @@ cv::Mat EdgeSnap::snap(const cv::Mat& mask, const cv::Mat& grey, int radius,
   // Parts of the mask narrower than a 3x3 cross (legs, poles, a mover's tip at the working
   // scale) are narrower than any window: the filter would average them away, so it does not
   // decide them.
-  cv::morphologyEx(mask(region), opened_, cv::MORPH_OPEN,
-                   cv::getStructuringElement(cv::MORPH_CROSS, {3, 3}));
-  cv::Mat snapped = mask.clone();
-  state_.create(guide_.size(), CV_8U);
+  openWithCross(mask, region, &line_, &edge_, &eroded_, &opened_);
+  mask.copyTo(snapped_);
   for (int y = 0; y < guide_.rows; ++y) {
     const float* brightness = guide_.ptr<float>(y);
     const float* slope = mean_slope_.ptr<float>(y);
     const float* offset = mean_offset_.ptr<float>(y);
     const uchar* opened = opened_.ptr<uchar>(y);
-    uchar* out = snapped.ptr<uchar>(y + region.y) + region.x;
+    uchar* out = snapped_.ptr<uchar>(y + region.y) + region.x;
     uchar* state = state_.ptr<uchar>(y);
     for (int x = 0; x < guide_.cols; ++x) {
       const bool thin = out[x] != opened[x];
@@ -129,12 +187,13 @@ cv::Mat EdgeSnap::snap(const cv::Mat& mask, const cv::Mat& grey, int radius,
       out[x] = value;
     }
   }
-  if (output_grey.empty() || output_grey.size() == mask.size()) return snapped;
-  return onFinerEdges(snapped, region, output_grey);
+  if (output_grey.empty() || output_grey.size() == mask.size()) return snapped_;
+  return onFinerEdges(snapped_, region, output_grey);
 }
 
 cv::Mat EdgeSnap::onFinerEdges(const cv::Mat& snapped, cv::Rect region, const cv::Mat& fine) {
-  cv::Mat out = scaledMask(snapped, fine.size());
+  cv::Mat& out = finer_;
+  scaledMask(snapped, fine.size(), &out);
   // cv::resize's bilinear taps: output pixel x reads the region's columns x0 and x0 + 1, the
   // latter with weight (x + 0.5) * sx - 0.5 - region.x - x0, and likewise for rows. Pixels whose
   // taps leave the region keep `out` (the filter changed nothing near the region's edges).

@@ -32,6 +32,9 @@ class EdgeSnap {
   // slope and offset scaled up and applied to that image where the filter changed the mask
   // (He and Sun's "Fast guided filter", 2015), so that the outline follows its finer edges;
   // elsewhere, and on the thin parts, the result scaled up.
+  //
+  // The result is `mask` or the snap's own buffer, valid until the next call: at a fixed frame
+  // size a snap allocates nothing.
   cv::Mat snap(const cv::Mat& mask, const cv::Mat& grey, int radius,
                const cv::Mat& output_grey = cv::Mat());
 
@@ -40,11 +43,13 @@ class EdgeSnap {
   cv::Mat onFinerEdges(const cv::Mat& snapped, cv::Rect region, const cv::Mat& fine);
 
   // Kept between calls (frames of one size allocate them once), all over the region that holds
-  // the outline.
+  // the outline: views into buffers of the mask's size (regionView).
   cv::Mat guide_, square_, label_, masked_guide_;
   cv::Mat mean_guide_, mean_square_, mean_label_, mean_masked_guide_;
-  cv::Mat slope_, offset_, mean_slope_, mean_offset_, opened_, state_;
+  cv::Mat slope_, offset_, mean_slope_, mean_offset_, eroded_, opened_, state_;
+  cv::Mat snapped_, finer_;  // the results, at the mask's size and at the finer edges'
   std::vector<float> scratch_;
+  std::vector<uchar> line_, edge_;  // openWithCross's rows
   std::vector<int> first_;  // onFinerEdges' output columns by their left tap
   std::vector<bool> changed_rows_;
 };

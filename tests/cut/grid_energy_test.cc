@@ -57,7 +57,9 @@ TEST(GridEnergy, TheExactReductionKeepsTheMinimum) {
   const cv::Mat all_free = cv::Mat::zeros(30, 40, CV_8U);
   int whole = 0, reduced = 0;
   const cv::Mat full = labelFreePixels(e, all_free, MaxFlowSolver::kOpenCv, &whole);
-  const cv::Mat part = labelFreePixels(e, decidedPixels(e), MaxFlowSolver::kOpenCv, &reduced);
+  cv::Mat decided;
+  decidedPixels(e, &decided);
+  const cv::Mat part = labelFreePixels(e, decided, MaxFlowSolver::kOpenCv, &reduced);
   EXPECT_EQ(whole, 1200);
   EXPECT_LT(reduced, whole);
   EXPECT_NEAR(energyOf(e, part), energyOf(e, full), 1e-3);
@@ -72,7 +74,9 @@ TEST(GridEnergy, TheGridSolverFindsTheMinimumOpenCvFinds) {
       GridEnergy e = randomEnergy({37, 23}, seed);
       e.right *= edge_scale;
       e.down *= edge_scale;
-      for (const cv::Mat& state : {cv::Mat(cv::Mat::zeros(23, 37, CV_8U)), decidedPixels(e)}) {
+      cv::Mat decided;
+      decidedPixels(e, &decided);
+      for (const cv::Mat& state : {cv::Mat(cv::Mat::zeros(23, 37, CV_8U)), decided}) {
         int general_nodes = 0, grid_nodes = 0;
         const cv::Mat general = labelFreePixels(e, state, MaxFlowSolver::kOpenCv, &general_nodes);
         const cv::Mat grid = labelFreePixels(e, state, MaxFlowSolver::kGrid, &grid_nodes);

@@ -218,10 +218,11 @@ TEST(MotionEvidence, ScaleIsTheUpperQuantileWithAFloorAtFiveMedians) {
   Params params;
   std::vector<float> residuals(100, 0.2f);
   for (int i = 90; i < 100; ++i) residuals[static_cast<size_t>(i)] = 3.f;
-  EXPECT_FLOAT_EQ(residualScale(residuals, params), 3.f);  // the 95th percentile
+  EXPECT_FLOAT_EQ(residualScale(&residuals, params), 3.f);  // the 95th percentile
   params.evidence_quantile = 0.5;
-  EXPECT_FLOAT_EQ(residualScale(residuals, params), 1.f);  // 5 x the median 0.2
-  EXPECT_FLOAT_EQ(residualScale({0.f, 0.f}, params), 0.1f);  // what the flow resolves
+  EXPECT_FLOAT_EQ(residualScale(&residuals, params), 1.f);  // 5 x the median 0.2
+  std::vector<float> still = {0.f, 0.f};
+  EXPECT_FLOAT_EQ(residualScale(&still, params), 0.1f);  // what the flow resolves
 }
 
 TEST(MotionEvidence, TheCarriedMaskFollowsTheFlow) {

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 #include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "motion/model.h"
 #include "motion/ransac.h"
@@ -267,6 +268,53 @@ TEST(Estimators, EpipoleAtInfinityForParallelDisplacements) {
   EXPECT_NEAR(EpipoleEstimator::offLine({50, 60}, {47, 60}, e), 0, 1e-9);
   EXPECT_NEAR(EpipoleEstimator::offLine({50, 60}, {50, 62}, e), 2, 1e-9);
   EXPECT_FALSE(EpipoleEstimator::estimate({{0, 0}, {10, 0}}, {{5, 0}, {20, 0}}, &e));  // one line
+}
+
+// Random symmetric positive semi-definite matrices, as the least-squares fits' are.
+template <int n>
+cv::Matx<double, n, n> randomScatter(cv::RNG& rng) {
+  cv::Matx<double, n, n> m = cv::Matx<double, n, n>::zeros();
+  for (int k = rng.uniform(n - 1, 3 * n); k > 0; --k) {
+    cv::Vec<double, n> row;
+    for (int i = 0; i < n; ++i) row[i] = rng.gaussian(rng.uniform(0.01, 100.0));
+    m += row * row.t();
+  }
+  return m;
+}
+
+template <int n>
+void expectCvEigensSmallestVector(cv::RNG& rng) {
+  for (int trial = 0; trial < 2000; ++trial) {
+    const cv::Matx<double, n, n> m = randomScatter<n>(rng);
+    cv::Matx<double, n, 1> values;
+    cv::Matx<double, n, n> vectors;
+    ASSERT_TRUE(cv::eigen(m, values, vectors));
+    cv::Vec<double, n> ours;
+    ASSERT_TRUE(smallestEigenvector(m, &ours));
+    for (int i = 0; i < n; ++i) ASSERT_EQ(ours[i], vectors(n - 1, i)) << trial;  // to the bit
+  }
+}
+
+TEST(Estimators, SmallestEigenvectorIsCvEigensToTheBit) {
+  cv::RNG rng(7);
+  expectCvEigensSmallestVector<3>(rng);
+  expectCvEigensSmallestVector<9>(rng);
+}
+
+TEST(Estimators, HomographyThroughFourPointsIsGetPerspectiveTransformsToTheBit) {
+  cv::RNG rng(8);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const std::vector<cv::Point2f> x = spreadPoints(4, static_cast<std::uint64_t>(trial) + 1);
+    std::vector<cv::Point2f> y;
+    for (const cv::Point2f& p : x) {
+      const float dx = rng.uniform(-5.f, 5.f), dy = rng.uniform(-5.f, 5.f);
+      y.push_back(p + cv::Point2f(dx, dy));
+    }
+    cv::Matx33d ours;
+    if (!HomographyEstimator::estimate(x, y, &ours)) continue;
+    const cv::Matx33d opencv(cv::getPerspectiveTransform(x, y));
+    for (int i = 0; i < 9; ++i) ASSERT_EQ(ours.val[i], opencv.val[i]) << trial;
+  }
 }
 
 TEST(RansacOptions, CheckRejectsEachOptionOutOfRange) {

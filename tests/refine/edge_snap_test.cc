@@ -142,7 +142,8 @@ TEST(EdgeSnap, AtTheInputsSizeChangesOnlyTheOutline) {
   cv::Mat input;
   cv::resize(bgr, input, {}, 2.5, 2.5, cv::INTER_CUBIC);
   EdgeSnap snap;
-  const cv::Mat working = snap.snap(mask, grey(bgr), 2);
+  // A copy: a snap's result is its own buffer, written again by the next call.
+  const cv::Mat working = snap.snap(mask, grey(bgr), 2).clone();
   EXPECT_EQ(cv::countNonZero(snap.snap(mask, grey(bgr), 2, grey(bgr)) != working), 0);
   const cv::Mat on_input = snap.snap(mask, grey(bgr), 2, grey(input));
   cv::Mat scaled_up, changed;
