@@ -17,11 +17,11 @@ struct GridEnergy {
                              // (0 in the last column / row)
 };
 
-// Fills energy->right and energy->down (in their buffers when of the size) with |C_i - C_j|^2 between each pixel of `colour`
-// (CV_32FC3) and its right and lower neighbour (0 where there is none), and returns GrabCut's
-// beta = 1 / (2 <|dC|^2>) over those edges (0 for a flat image): scaled by beta, a contrast term
-// reacts to the image's own contrast whatever its bit depth or dynamic range. The callers turn
-// the squared steps into their edge weights.
+// Fills energy->right and energy->down (in their buffers when of the size) with |C_i - C_j|^2
+// between each pixel of `colour` (CV_32FC3) and its right and lower neighbour (0 where there is
+// none), and returns GrabCut's beta = 1 / (2 <|dC|^2>) over those edges (0 for a flat image):
+// scaled by beta, a contrast term reacts to the image's own contrast whatever its bit depth or
+// dynamic range. The callers turn the squared steps into their edge weights.
 float squaredColourSteps(const cv::Mat& colour, GridEnergy* energy);
 
 // Where a pixel's label comes from in a solve.
