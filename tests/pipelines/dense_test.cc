@@ -203,8 +203,9 @@ DollyScores segmentDolly(const Params& params) {
 
 TEST(Dense, ADollyPastNearPostsReadsDepthAndKeepsThePostsOut) {
   const DollyScores plane_and_parallax = segmentDolly(test::withMethod(Method::kDense));
-  // Read from the fifth pair (frame 5: depth must persist over five pairs), while the posts pass.
-  EXPECT_EQ(plane_and_parallax.first_parallax, 5);
+  // Read from the third pair (frame 3: depth must show on most of the last five), while the
+  // posts pass.
+  EXPECT_EQ(plane_and_parallax.first_parallax, 3);
   EXPECT_GE(plane_and_parallax.parallax_pairs, 12);
   EXPECT_LT(plane_and_parallax.posts_marked, 0.05);
   EXPECT_GT(plane_and_parallax.mover_found, 0.8);
