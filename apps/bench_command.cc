@@ -39,6 +39,7 @@ struct BenchOptions {
   std::string data;
   std::vector<std::string> methods = enumNames<Method>();
   std::string size;  // "WxH" or empty (native)
+  cv::Size resize;   // size, parsed; empty for native
   std::string json_file;
   std::string html_file;
   Params params;
@@ -64,16 +65,14 @@ long minorFaults() {
   return usage.ru_minflt;
 }
 
-cv::Size parseSize(const std::string& text) {
-  if (text.empty()) return {};
-  int w = 0, h = 0;
-  char x = 0, extra = 0;
-  std::istringstream in(text);
-  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || (in >> extra) || w < 1 || h < 1 ||
-      w > 8192 || h > 8192) {
-    throw std::runtime_error("--size must be WxH with 1 <= W, H <= 8192, got '" + text + "'");
+// --size: frames as large as a video can hold; larger is a typo.
+cv::Size benchSize(const std::string& text) {
+  constexpr int kMaxSide = 8192;
+  const cv::Size size = parseSize("--size", text);
+  if (size.width < 1 || size.height < 1 || size.width > kMaxSide || size.height > kMaxSide) {
+    throw UsageError("--size must be within 1x1 .. 8192x8192 (got '" + text + "')");
   }
-  return {w, h};
+  return size;
 }
 
 // The CPU, for the table's header: benchmarks only compare on the same machine.
@@ -95,7 +94,7 @@ SegmentOptions runOptions(const GtSequence& sequence, const std::string& method,
   segment.params = options.params;
   setParam(&segment.params, "method", method);
   segment.quiet = true;
-  segment.resize = parseSize(options.size);
+  segment.resize = options.resize;
   return segment;
 }
 
@@ -328,7 +327,10 @@ void addBenchCommand(CLI::App& app) {
   cmd->add_option("--html", options->html_file,
                   "Write a report page: the table, charts of J, each sequence's worst frames");
   addParamsOptions(cmd, &options->params, {"method"});
-  cmd->callback([options] { runBench(*options); });
+  cmd->callback([options] {
+    if (!options->size.empty()) options->resize = benchSize(options->size);
+    runBench(*options);
+  });
 }
 
 }  // namespace movseg::cli

@@ -7,6 +7,7 @@
 #include <string>
 
 #include <CLI/CLI.hpp>
+#include <opencv2/core/types.hpp>
 
 namespace movseg::cli {
 
@@ -18,6 +19,22 @@ constexpr int kExitInterrupted = 130;  // SIGINT or SIGTERM, 128 + SIGINT as she
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+
+// A size given as WIDTHxHEIGHT (or WIDTHXHEIGHT), e.g. 320x240; `option` names it in the
+// UsageError thrown for anything else. Its range is the caller's to check.
+cv::Size parseSize(const std::string& option, const std::string& text);
+
+// Runs `interpret`, which turns a command's options into its settings before anything runs: an
+// std::invalid_argument it throws names a value out of range, the command line's fault, and is
+// rethrown as a UsageError (exit code 2).
+template <typename Interpret>
+void interpretOptions(Interpret&& interpret) {
+  try {
+    interpret();
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+}
 
 // `text` on one line, whatever it holds (a file name may contain a newline): errors are one line.
 inline std::string oneLine(std::string text) {

@@ -62,7 +62,10 @@ void addDemoCommand(CLI::App& app) {
       ->check(kNotNegative)
       ->capture_default_str();
   addParamsOptions(cmd, &options->params);
-  cmd->callback([options] { runDemo(*options); });
+  cmd->callback([options] {
+    interpretOptions([&] { checkSynthOptions(options->synth); });
+    runDemo(*options);
+  });
 }
 
 }  // namespace movseg::cli

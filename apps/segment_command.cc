@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -98,7 +99,7 @@ void addSegmentCommand(CLI::App& app) {
                 "Show the overlay in a live window (needs a display; q or Esc stops)");
   cmd->add_flag("--debug", options->debug, "Write each stage's pictures to OUTDIR/debug/<stage>/");
   cmd->add_option("--max-frames", options->max_frames, "Stop after N frames (at least 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, std::numeric_limits<int>::max()));
   cmd->add_option("--stats", options->stats_file, "Per-frame diagnostics as JSON Lines");
   cmd->add_flag("--overwrite", options->overwrite,
                 "Replace the outputs of an earlier run in OUTDIR (else such a folder is refused)");

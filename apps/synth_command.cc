@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "commands.h"
+#include "params_options.h"
 #include "synth/synth.h"
 
 namespace movseg::cli {
@@ -22,15 +23,6 @@ struct SynthCommandOptions {
   SynthOptions synth;
 };
 
-cv::Size parseSize(const std::string& text) {
-  const std::regex pattern(R"((\d{1,6})[xX](\d{1,6}))");
-  std::smatch match;
-  if (!std::regex_match(text, match, pattern)) {
-    throw std::invalid_argument("--size must be WIDTHxHEIGHT, e.g. 320x240 (got '" + text + "')");
-  }
-  return {std::stoi(match[1]), std::stoi(match[2])};
-}
-
 // "MIN-MAX" or a single speed "S" (= "S-S"), px/frame; the generator checks the range itself.
 std::pair<double, double> parseSpeedRange(const std::string& text) {
   const std::regex pattern(R"((\d+(?:\.\d*)?)(?:-(\d+(?:\.\d*)?))?)");
@@ -41,16 +33,6 @@ std::pair<double, double> parseSpeedRange(const std::string& text) {
   }
   const double lo = std::stod(match[1]);
   return {lo, match[2].matched ? std::stod(match[2]) : lo};
-}
-
-// CLI11 reads "-1" into an unsigned option as 2^64 - 1; a negative seed is a typo, not a seed.
-CLI::Validator nonNegative() {
-  return CLI::Validator(
-      [](std::string& value) {
-        return value.rfind('-', 0) == 0 ? "must be a non-negative integer (got " + value + ")"
-                                        : std::string();
-      },
-      "");
 }
 
 std::string describe(const SynthOptions& o, const std::string& dir) {
@@ -76,7 +58,7 @@ void addSynthCommand(CLI::App& app) {
   cmd->add_option("--frames", synth.frames, "Number of frames")->capture_default_str();
   cmd->add_option("--size", options->size, "Frame size WIDTHxHEIGHT")->capture_default_str();
   cmd->add_option("--seed", synth.seed, "Seed: equal seeds give identical files")
-      ->check(nonNegative())
+      ->check(kNotNegative)
       ->capture_default_str();
   cmd->add_option("--scene", options->scene,
                   "plane (one textured plane) or depth (3-D: ground, near and far posts, "
@@ -99,11 +81,14 @@ void addSynthCommand(CLI::App& app) {
   cmd->add_flag("--camouflage", synth.camouflage,
                 "Texture the objects like the background: only their motion gives them away");
   cmd->callback([options] {
-    options->synth.size = parseSize(options->size);
-    options->synth.camera = parseSynthCamera(options->camera);
-    options->synth.scene = parseSynthScene(options->scene);
-    std::tie(options->synth.object_speed_min, options->synth.object_speed_max) =
-        parseSpeedRange(options->object_speed);
+    interpretOptions([&] {
+      options->synth.size = parseSize("--size", options->size);
+      options->synth.camera = parseSynthCamera(options->camera);
+      options->synth.scene = parseSynthScene(options->scene);
+      std::tie(options->synth.object_speed_min, options->synth.object_speed_max) =
+          parseSpeedRange(options->object_speed);
+      checkSynthOptions(options->synth);
+    });
     writeSynthSequence(options->output_dir, options->synth);
     std::cout << "synth: " << describe(options->synth, options->output_dir) << "\n";
   });

@@ -34,9 +34,12 @@ CommandResult runCli(const std::string& arguments);
 // runCli() under a file-size limit (RLIMIT_FSIZE, as a full disk): a write past `bytes` fails.
 CommandResult runCliWithFileLimit(long bytes, const std::string& arguments);
 
-// Expects a non-zero exit (`code` when given) and exactly one line "movseg: error: ..." naming
-// `needle`.
-void expectOneLineError(const CommandResult& result, const std::string& needle, int code = -1);
+// The CLI's exit codes (README, "Bad input"; apps/commands.h).
+constexpr int kExitRunFailed = 1;  // bad input, a failed write
+constexpr int kExitUsage = 2;      // an unknown option, a value out of range, bad output paths
+
+// Expects exit code `code` and exactly one line "movseg: error: ..." naming `needle`.
+void expectOneLineError(const CommandResult& result, const std::string& needle, int code);
 
 // `movseg ARGS...` started in the background, its stdout and stderr going to `log`; its pid.
 pid_t startCli(const std::vector<std::string>& args, const std::string& log);

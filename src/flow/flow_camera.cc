@@ -248,7 +248,9 @@ void FlowCameraFitter::fit(const cv::Mat& flow, const std::vector<GridSample>& g
   const float flat = textureQuantile(grid, params_.flow_texture_quantile, &textures_);
   size_t background = 0;
   for (const GridSample& s : grid) {
-    if (s.texture < flat) continue;
+    // No gradient in the window, no motion to measure: DIS gives such a sample its neighbours'
+    // flow or none, so a flat frame (or a letterbox's bars) would otherwise fit the identity.
+    if (s.texture < flat || s.texture <= 0) continue;
     const cv::Vec2f f = flow.at<cv::Vec2f>(s.at);
     camera->at.emplace_back(s.at);
     camera->to.emplace_back(static_cast<float>(s.at.x) + f[0], static_cast<float>(s.at.y) + f[1]);

@@ -173,6 +173,8 @@ class DensePipeline : public Pipeline {
     const Remember remember{a, &previous_};
     has_pair_ = false;
     input_size_ = a.input_size;
+    // A frame too small for the flow (DenseFlow) has no camera to measure: say so.
+    diag.motion_fallback = !a.first_frame && a.flow.empty();
     if (a.first_frame || a.flow.empty()) return forget(a.bgr.size());
     Clock::time_point start = Clock::now();
     cv::Mat& carried = carried_;

@@ -69,7 +69,9 @@ void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("invalid synth option: " + what);
 }
 
-void checkOptions(const SynthOptions& o) {
+}  // namespace
+
+void checkSynthOptions(const SynthOptions& o) {
   require(o.frames >= 1 && o.frames <= kMaxFrames, "frames must be in [1, " +
                                                        std::to_string(kMaxFrames) + "] (got " +
                                                        std::to_string(o.frames) + ")");
@@ -92,6 +94,8 @@ void checkOptions(const SynthOptions& o) {
   require(!travels || o.scene == SynthScene::kDepth,
           "camera " + synthCameraName(o.camera) + " needs the depth scene");
 }
+
+namespace {
 
 // A static camera gives the identity exactly, not a rounding of H * H^-1.
 cv::Matx33d frameToFrame(const cv::Matx33d& previous, const cv::Matx33d& current) {
@@ -164,7 +168,7 @@ struct SynthSequence::State {
 };
 
 SynthSequence::SynthSequence(const SynthOptions& options) {
-  checkOptions(options);
+  checkSynthOptions(options);
   auto state = std::make_shared<State>();
   state->options = options;
   if (options.scene == SynthScene::kDepth) {

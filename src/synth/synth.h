@@ -69,12 +69,15 @@ struct SynthFrame {
   std::optional<SynthPinhole> pose;  // the 3-D scene's camera; none on the plane
 };
 
+// Throws std::invalid_argument naming the first option out of range: frames not in
+// [1, 100000], size not within 16x16..2048x2048, objects not in [1, 3], noise_sigma not in
+// [0, 64], illumination_drift not in [0, 0.5], not 0 < object_speed_min <= object_speed_max
+// <= 30, or a camera motion the scene does not have (dolly, forward on the plane).
+void checkSynthOptions(const SynthOptions& options);
+
 class SynthSequence {
  public:
-  // Throws std::invalid_argument naming the first option out of range: frames not in
-  // [1, 100000], size not within 16x16..2048x2048, objects not in [1, 3], noise_sigma not in
-  // [0, 64], illumination_drift not in [0, 0.5], not 0 < object_speed_min <= object_speed_max
-  // <= 30, or a camera motion the scene does not have (dolly, forward on the plane).
+  // Throws std::invalid_argument as checkSynthOptions does.
   explicit SynthSequence(const SynthOptions& options);
 
   int size() const;

@@ -46,7 +46,9 @@ TEST_P(Stream, GivesTheSegmentersMasksOnePushLater) {
   const std::vector<cv::Mat> frames = test::synthFrames(10, 6);
   StreamSegmenter stream(params(), GetParam().threads);
   const std::vector<cv::Mat> masks = streamed(stream, frames);
-  EXPECT_TRUE(test::identical(masks, test::masksOf(frames, params())));
+  const std::vector<cv::Mat> expected = test::masksOf(frames, params());
+  ASSERT_GT(cv::countNonZero(expected.back()), 0);  // equal empty masks would prove nothing
+  EXPECT_TRUE(test::identical(masks, expected));
 }
 
 // Each frame's mask at once, as `movseg segment` takes them on one thread: the jobs still take
@@ -59,7 +61,9 @@ TEST_P(Stream, FlushingAfterEveryPushGivesTheSegmentersMasks) {
     EXPECT_FALSE(stream.push(frame).has_value());
     masks.push_back(stream.flush()->mask);
   }
-  EXPECT_TRUE(test::identical(masks, test::masksOf(frames, params())));
+  const std::vector<cv::Mat> expected = test::masksOf(frames, params());
+  ASSERT_GT(cv::countNonZero(expected.back()), 0);
+  EXPECT_TRUE(test::identical(masks, expected));
 }
 
 TEST_P(Stream, RestartsOnASizeChangeAndAfterReset) {

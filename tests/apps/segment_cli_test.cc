@@ -92,7 +92,7 @@ TEST(SegmentCli, DebugWritesEachStagesPictures) {
 TEST(SegmentCli, MissingInput) {
   const test::TempDir dir;
   test::expectOneLineError(test::runCli("segment " + dir / "nothing.mp4" + " -o " + dir / "out"),
-                     "nothing.mp4");
+                     "nothing.mp4", test::kExitRunFailed);
 }
 
 TEST(SegmentCli, EmptyAndUnreadableVideos) {
@@ -101,7 +101,7 @@ TEST(SegmentCli, EmptyAndUnreadableVideos) {
   { std::ofstream(dir / "junk.mp4") << "this is not a video at all"; }
   for (const char* name : {"empty.mp4", "junk.mp4"}) {
     const test::CommandResult r = test::runCli("segment " + dir / name + " -o " + dir / "out");
-    test::expectOneLineError(r, name);
+    test::expectOneLineError(r, name, test::kExitRunFailed);
     EXPECT_FALSE(fs::exists(dir / "out/00000.png"));
   }
 }
@@ -111,14 +111,15 @@ TEST(SegmentCli, FolderWithoutImages) {
   fs::create_directories(dir / "frames");
   { std::ofstream(dir / "frames/readme.txt") << "no images here"; }
   test::expectOneLineError(test::runCli("segment " + dir / "frames" + " -o " + dir / "out"),
-                     "no images");
+                     "no images", test::kExitRunFailed);
 }
 
 TEST(SegmentCli, CorruptImageInAFolderIsNamed) {
   const test::TempDir dir;
   const std::string frames = synthClip(dir, 3);
   { std::ofstream(frames + "/00001.png", std::ios::trunc) << "garbage"; }
-  test::expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "out"), "00001.png");
+  test::expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "out"), "00001.png",
+                           test::kExitRunFailed);
   EXPECT_TRUE(fs::exists(dir / "out/00000.png"));  // what came before is complete
   EXPECT_FALSE(fs::exists(dir / "out/00001.png"));
 }
@@ -127,22 +128,23 @@ TEST(SegmentCli, UnknownOptionAndBadValues) {
   const test::TempDir dir;
   const std::string frames = synthClip(dir, 2);
   test::expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "o" + " --frobnicate"),
-                     "frobnicate");
+                     "frobnicate", test::kExitUsage);
   test::expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "o" + " --lambda -3"),
-                     "lambda");
+                     "lambda", test::kExitUsage);
   test::expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "o" + " --gmm-k 0"),
-                     "gmm_clusters");
+                     "gmm_clusters", test::kExitUsage);
   test::expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "o" + " --set nope=1"),
-                     "nope");
+                     "nope", test::kExitUsage);
   test::expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "o" + " --method magic"),
-                     "magic");
+                     "magic", test::kExitUsage);
 }
 
 TEST(SegmentCli, UnwritableOutputFolder) {
   const test::TempDir dir;
   const std::string frames = synthClip(dir, 2);
   { std::ofstream(dir / "a-file") << "x"; }
-  test::expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "a-file/out"), "a-file");
+  test::expectOneLineError(test::runCli("segment " + frames + " -o " + dir / "a-file/out"),
+                           "a-file", test::kExitRunFailed);
 }
 
 // Grey, BGRA and 16-bit images are converted; a frame of another size restarts the segmenter.
@@ -214,7 +216,7 @@ TEST(SegmentCli, AFailingInputAmongSeveralEndsAlone) {
   }
   const test::CommandResult r = test::runCli("segment " + dir / "a" + " " + dir / "nothing.mp4" +
                                              " " + dir / "b" + " -o " + dir / "out" + " -q --threads 2");
-  test::expectOneLineError(r, "nothing.mp4", 1);
+  test::expectOneLineError(r, "nothing.mp4", test::kExitRunFailed);
   EXPECT_TRUE(fs::exists(dir / "out/a/00002.png"));
   EXPECT_TRUE(fs::exists(dir / "out/b/00002.png"));
   EXPECT_FALSE(fs::exists(dir / "out/nothing"));
@@ -228,13 +230,17 @@ TEST(SegmentCli, SeveralInputsRefusedBeforeAnyRun) {
     ASSERT_EQ(test::runCli("synth -o " + clip + " --frames 2 --size 160x120").exit_code, 0);
   }
   const std::string out = " -o " + dir / "out";
-  test::expectOneLineError(test::runCli("segment " + a + " " + dir / "x/a" + out), "rename one", 2);
-  test::expectOneLineError(test::runCli("segment " + a + " " + b + out + " --show"), "--show", 2);
+  test::expectOneLineError(test::runCli("segment " + a + " " + dir / "x/a" + out), "rename one",
+                           test::kExitUsage);
+  test::expectOneLineError(test::runCli("segment " + a + " " + b + out + " --show"), "--show",
+                           test::kExitUsage);
   test::expectOneLineError(
-      test::runCli("segment " + a + " " + b + out + " --stats " + dir / "s.jsonl"), "--stats", 2);
+      test::runCli("segment " + a + " " + b + out + " --stats " + dir / "s.jsonl"), "--stats",
+      test::kExitUsage);
   test::expectOneLineError(test::runCli("segment " + a + " " + b + " -o " + a + "/frames/out"),
-                           "into the input", 2);
-  test::expectOneLineError(test::runCli("segment " + a + out + " --threads 0"), "--threads", 2);
+                           "into the input", test::kExitUsage);
+  test::expectOneLineError(test::runCli("segment " + a + out + " --threads 0"), "--threads",
+                           test::kExitUsage);
   EXPECT_FALSE(fs::exists(dir / "out"));
 }
 

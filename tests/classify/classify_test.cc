@@ -45,6 +45,7 @@ TEST(Classify, GmmOfIdenticalColoursStaysFinite) {
   const ColourGmm gmm = ColourGmm::fit(std::vector<cv::Vec3f>(20, cv::Vec3f(50, 50, 50)), 5);
   EXPECT_TRUE(std::isfinite(gmm.logLikelihood({50, 50, 50})));
   EXPECT_TRUE(std::isfinite(gmm.logLikelihood({255, 0, 255})));
+  EXPECT_GT(gmm.logLikelihood({50, 50, 50}), gmm.logLikelihood({255, 0, 255}));
   EXPECT_TRUE(ColourGmm::fit({}, 5).empty());
 }
 

@@ -106,14 +106,14 @@ TEST(WorkLimit, TheCostliestParametersTakeSecondsPerFrame) {
   EXPECT_TRUE(r.diagnostics.work_limited);
   test::expectValidResult(r, frames[1].size());
 #ifndef __SANITIZE_ADDRESS__  // sanitized code runs several times slower
-  EXPECT_LT(seconds, 30);
+  EXPECT_LT(seconds, 10);  // measured 0.85 s for the whole test
 #endif
 }
 
 // Dense with every pixel a sample of the camera fit, the narrowest inlier distance and 10,000
 // hypotheses, on noise (where no sample set stops RANSAC early): unlimited, the second frame of a
 // 960x540 pair took 13 s; limited (a sample every 5 pixels, 482 hypotheses), 0.7 s.
-TEST(WorkLimit, TheCostliestDenseParametersTakeUnderFiveSecondsPerFrame) {
+TEST(WorkLimit, TheCostliestDenseParametersTakeUnderThreeSecondsPerFrame) {
   Params p = costliest();
   p.method = Method::kDense;
   p.flow_finest_scale = 0;
@@ -132,7 +132,7 @@ TEST(WorkLimit, TheCostliestDenseParametersTakeUnderFiveSecondsPerFrame) {
   EXPECT_TRUE(r.diagnostics.work_limited);
   test::expectValidResult(r, noise.size());
 #ifndef __SANITIZE_ADDRESS__
-  EXPECT_LT(seconds, 5);
+  EXPECT_LT(seconds, 3);  // measured 0.41 s for the whole test
 #endif
 }
 

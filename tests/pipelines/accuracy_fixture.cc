@@ -1,16 +1,19 @@
 #include "accuracy_fixture.h"
 
+#include <opencv2/imgproc.hpp>
+
 #include "movseg/segmenter.h"
 
 namespace movseg::test {
 
-double meanIou(const SynthOptions& clip, const Params& params) {
+double meanIou(const SynthOptions& clip, const Params& params, bool grey) {
   const SynthSequence sequence(clip);
   Segmenter segmenter(params);
   double sum = 0;
   int counted = 0;
   for (int t = 0; t < sequence.size(); ++t) {
-    const SynthFrame f = sequence.frame(t);
+    SynthFrame f = sequence.frame(t);
+    if (grey) cv::cvtColor(f.frame, f.frame, cv::COLOR_BGR2GRAY);
     const cv::Mat mask = segmenter.process(f.frame).mask;
     if (t == 0) continue;  // no previous frame, no motion
     const double uni = cv::countNonZero(mask | f.mask);

@@ -7,7 +7,8 @@
 namespace movseg::test {
 
 // Mean IoU of `params`' masks against the clip's truth, over the frames after the first
-// (a frame with nothing to find and nothing found counts 1).
-double meanIou(const SynthOptions& clip, const Params& params);
+// (a frame with nothing to find and nothing found counts 1). With `grey`, the frames are given
+// to the segmenter in grey.
+double meanIou(const SynthOptions& clip, const Params& params, bool grey = false);
 
 }  // namespace movseg::test

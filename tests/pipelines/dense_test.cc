@@ -28,9 +28,18 @@ SynthOptions clip(SynthCamera camera, bool hard) {
 
 class DenseAccuracy : public ::testing::TestWithParam<SynthCamera> {};
 
-TEST_P(DenseAccuracy, MeanIouAbove085OnPlainAnd070OnCamouflagedObjects) {
-  EXPECT_GE(test::meanIou(clip(GetParam(), false), test::withMethod(Method::kDense)), 0.85);
-  EXPECT_GE(test::meanIou(clip(GetParam(), true), test::withMethod(Method::kDense)), 0.70);
+// README: every synth camera at 0.95 or more. Measured 0.971-0.991 on the plain clips,
+// 0.843-0.939 on the camouflaged ones.
+TEST_P(DenseAccuracy, MeanIouAbove095OnPlainAnd082OnCamouflagedObjects) {
+  EXPECT_GE(test::meanIou(clip(GetParam(), false), test::withMethod(Method::kDense)), 0.95);
+  EXPECT_GE(test::meanIou(clip(GetParam(), true), test::withMethod(Method::kDense)), 0.82);
+}
+
+// Grey video (a thermal or night camera) has motion but no colour to learn: measured 0.931
+// against 0.971 in colour on this clip.
+TEST(DenseAccuracy, GreyFramesKeepMostOfTheAccuracy) {
+  EXPECT_GE(test::meanIou(clip(SynthCamera::kMix, false), test::withMethod(Method::kDense), true),
+            0.90);
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryCamera, DenseAccuracy,

@@ -20,8 +20,9 @@ double meanIou(SynthCamera camera, cv::Size size) {
 
 class SyntheticAccuracy : public ::testing::TestWithParam<SynthCamera> {};
 
-TEST_P(SyntheticAccuracy, MeanIouAbove080At320x240) {
-  EXPECT_GE(meanIou(GetParam(), {320, 240}), 0.80) << synthCameraName(GetParam());
+// Measured 0.964 (the lowest camera) to 0.988.
+TEST_P(SyntheticAccuracy, MeanIouAbove095At320x240) {
+  EXPECT_GE(meanIou(GetParam(), {320, 240}), 0.95) << synthCameraName(GetParam());
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryCamera, SyntheticAccuracy,
@@ -32,8 +33,9 @@ INSTANTIATE_TEST_SUITE_P(EveryCamera, SyntheticAccuracy,
                            return synthCameraName(param_info.param);
                          });
 
-TEST(SyntheticAccuracy, MeanIouAbove080At640x480) {
-  EXPECT_GE(meanIou(SynthCamera::kMix, {640, 480}), 0.80);
+// Measured 0.909: at twice the size the objects' speeds double as well.
+TEST(SyntheticAccuracy, MeanIouAbove089At640x480) {
+  EXPECT_GE(meanIou(SynthCamera::kMix, {640, 480}), 0.89);
 }
 
 }  // namespace

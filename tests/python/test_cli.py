@@ -20,4 +20,4 @@ def test_segment_writes_the_clis_masks(clip, cli_masks, tmp_path):
 def test_errors_and_exit_codes_pass_through(tmp_path):
     assert run_module("--help").returncode == 0
     done = run_module("segment", str(tmp_path / "missing"), "-o", str(tmp_path / "out"))
-    assert done.returncode != 0 and "movseg: error:" in done.stderr
+    assert done.returncode == 1 and done.stderr.startswith("movseg: error:")

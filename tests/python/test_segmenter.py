@@ -1,11 +1,13 @@
 """movseg.Segmenter through numpy: the CLI's masks bit for bit, every frame type, the results."""
 import gc
+import subprocess
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 import pytest
 
 import movseg
+from conftest import read_masks
 
 
 def segment(frames, params=None):
@@ -41,10 +43,12 @@ def test_bgra_uint16_and_strided_frames_give_the_bgr_masks(frames):
         assert all(np.array_equal(a, b) for a, b in zip(masks, expected))
 
 
-def test_grey_frames_give_masks_of_their_size(frames):
-    grey = [f[:, :, 1].copy() for f in frames[:3]]
-    for r in segment(grey):
-        assert r.mask.shape == grey[0].shape and set(np.unique(r.mask)) <= {0, 255}
+def test_grey_frames_give_the_masks_of_their_picture_in_three_channels(frames):
+    grey = [f[:, :, 1].copy() for f in frames]
+    expected = [r.mask for r in segment([np.dstack([g, g, g]) for g in grey])]
+    assert expected[-1].any()  # equal empty masks would prove nothing
+    masks = [r.mask for r in segment(grey)]
+    assert all(np.array_equal(a, b) for a, b in zip(masks, expected))
 
 
 def test_result_arrays_and_diagnostics(frames):
@@ -68,10 +72,13 @@ def test_homography_model(frames):
 
 
 @pytest.mark.parametrize("method", ["paper", "diff", "mog2", "mog2-comp"])
-def test_every_method_is_reachable(frames, method):
-    results = segment(frames[:3], movseg.Params(method=method))
-    assert all(r.mask.shape == frames[0].shape[:2] for r in results)
-    assert not results[0].mask.any() and results[0].diagnostics.first_frame
+def test_every_method_gives_the_clis_masks(cli, clip, frames, method, tmp_path):
+    subprocess.run([cli, "segment", str(clip / "frames"), "-o", str(tmp_path), "-q",
+                    "--method", method], check=True, capture_output=True)
+    expected = read_masks(tmp_path)
+    results = segment(frames, movseg.Params(method=method))
+    assert results[0].diagnostics.first_frame and any(m.any() for m in expected)
+    assert all(np.array_equal(r.mask, m) for r, m in zip(results, expected))
 
 
 def test_debug_pictures_and_compensated_previous_frame(frames):
@@ -79,7 +86,12 @@ def test_debug_pictures_and_compensated_previous_frame(frames):
     assert segmenter.compensated_previous_frame() is None
     segmenter.process(frames[0])
     r = segmenter.process(frames[1])
-    assert "mask" in r.debug and r.debug["mask"].shape[:2] == frames[1].shape[:2]
+    # dense's stages at its working scale (320 px wide at most); the edges and mask at the frame's
+    stages = {"carried", "confirmation", "residual", "unary", "uncovered"}
+    assert set(r.debug) == stages | {"edges", "mask"}
+    assert all(r.debug[stage].shape == frames[1].shape[:2] for stage in stages)
+    assert r.debug["edges"].shape == frames[1].shape and np.array_equal(r.debug["mask"], r.mask)
+    assert r.debug["residual"].any() and r.debug["unary"].any()
     assert segmenter.compensated_previous_frame().shape == frames[1].shape
     segmenter.reset()
     assert segmenter.process(frames[2]).diagnostics.first_frame
@@ -115,6 +127,17 @@ def test_frames_beyond_the_warps_limit_raise_value_error():
         movseg.Segmenter().process(np.zeros((100000, 10), np.uint8))
 
 
+def test_an_opencv_failure_raises_runtime_error():
+    # 40000 px wide: segmented at 320 px, but the compensated previous frame is warped at full
+    # width, past remap's 32766.
+    segmenter = movseg.Segmenter(movseg.Params(method="paper"))
+    frame = np.zeros((8, 40000, 3), np.uint8)
+    segmenter.process(frame)
+    segmenter.process(frame)
+    with pytest.raises(RuntimeError, match="OpenCV failed"):
+        segmenter.compensated_previous_frame()
+
+
 def test_not_an_array_raises_a_short_type_error(frames):
     with pytest.raises(TypeError):
         movseg.Segmenter().process("frame.png")
@@ -133,9 +156,11 @@ def test_rgb_and_rgba_frames_with_rgb_give_the_bgr_masks(frames, cli_masks):
         assert np.array_equal(with_alpha.process(rgba, rgb=True).mask, cli_masks[index])
 
 
-def test_float_frames_in_0_255_raise_value_error(frames, cli_masks):
+def test_float_frames_in_0_1_give_the_clis_masks_and_in_0_255_raise(frames, cli_masks):
     segmenter = movseg.Segmenter()
-    assert np.array_equal(segmenter.process(frames[0] / 255.0).mask, cli_masks[0])
+    for index, frame in enumerate(frames):
+        assert np.array_equal(segmenter.process(frame / 255.0).mask, cli_masks[index]), index
+    assert cli_masks[-1].any()
     with pytest.raises(ValueError, match=r"float frame values must be in \[0, 1\]"):
         segmenter.process(frames[1].astype(np.float32))
 

@@ -43,6 +43,30 @@ TEST(DegenerateScenes, FlatFramesFallBackToTheIdentityWithAnEmptyMask) {
   }
 }
 
+// `dense` measures the camera from the flow of textured samples: a flat frame has none, a frame
+// under 16 pixels a side no flow at all. Either way the pair says so (README, "Bad input").
+TEST(DegenerateScenes, DenseFlagsFramesWithoutMeasurableMotion) {
+  const std::vector<cv::Mat> frames{cv::Mat(kSize, CV_8UC3, cv::Scalar::all(0)),
+                                    cv::Mat(kSize, CV_8UC3, cv::Scalar::all(90)),
+                                    cv::Mat(1, 1, CV_8UC3, cv::Scalar::all(90)),
+                                    cv::Mat(1000, 7, CV_8UC3, cv::Scalar::all(90))};
+  for (const cv::Mat& frame : frames) {
+    Segmenter segmenter(test::withMethod(Method::kDense));
+    EXPECT_FALSE(segmenter.process(frame).diagnostics.motion_fallback);  // a first frame
+    for (int i = 0; i < 2; ++i) {
+      const Result r = segmenter.process(frame);
+      test::expectValidResult(r, frame.size());
+      EXPECT_TRUE(r.diagnostics.motion_fallback) << frame.size;
+      EXPECT_EQ(r.diagnostics.model, cv::Matx33d::eye()) << frame.size;
+      EXPECT_EQ(cv::countNonZero(r.mask), 0) << frame.size;
+    }
+  }
+  // A textured frame is measured: the flag is not raised for nothing.
+  Segmenter segmenter(test::withMethod(Method::kDense));
+  segmenter.process(test::texture(kSize, 5));
+  EXPECT_FALSE(segmenter.process(test::texture(kSize, 5)).diagnostics.motion_fallback);
+}
+
 TEST(DegenerateScenes, PureNoiseRaisesLambdaInsteadOfLightingUp) {
   Segmenter segmenter(paper());
   for (int i = 0; i < 3; ++i) {

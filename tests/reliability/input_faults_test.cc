@@ -26,8 +26,6 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-constexpr int kRunFailed = 1;
-
 std::string h264(const test::TempDir& dir, const std::string& name, const std::string& size, int frames,
                  const std::string& extra = "") {
   EXPECT_TRUE(test::ffmpeg("-f lavfi -i testsrc2=size=" + size + ":rate=25 -frames:v " +
@@ -76,7 +74,7 @@ TEST(InputFaults, ADamagedVideoIsSegmentedAndReportedAsFailed) {
   const std::string video = damaged(dir);
   const test::CommandResult r = test::runCli("segment " + video + " -o " + dir / "out" + " -q --stats " +
                                              dir / "s.jsonl");
-  test::expectOneLineError(r, "decode errors", kRunFailed);
+  test::expectOneLineError(r, "decode errors", test::kExitRunFailed);
   const std::vector<nlohmann::json> lines = statsLines(dir / "s.jsonl");
   EXPECT_GT(lines.size(), 20u);
   int errors = 0;
@@ -92,7 +90,7 @@ TEST(InputFaults, StopOnDecodeErrorStopsAtTheFirst) {
   const std::string video = damaged(dir);
   const test::CommandResult r =
       test::runCli("segment " + video + " -o " + dir / "out" + " -q --stop-on-decode-error");
-  test::expectOneLineError(r, "decode error", kRunFailed);
+  test::expectOneLineError(r, "decode error", test::kExitRunFailed);
   const size_t masks = test::filesIn(dir / "out").size() - 1;  // and the manifest
   EXPECT_GT(masks, 0u);
   EXPECT_LT(masks, 30u);
@@ -104,7 +102,7 @@ TEST(InputFaults, ATruncatedVideoIsReported) {
     const std::string video = h264(dir, name, "320x240", 50, name == "t.mp4" ? "-movflags +faststart" : "");
     fs::resize_file(video, fs::file_size(video) / 2);
     const test::CommandResult r = test::runCli("segment " + video + " -o " + dir / ("out-" + name) + " -q");
-    test::expectOneLineError(r, "truncated", kRunFailed);
+    test::expectOneLineError(r, "truncated", test::kExitRunFailed);
   }
 }
 
@@ -114,17 +112,34 @@ TEST(InputFaults, ASilentServerFailsAtTheTimeout) {
   const auto start = Clock::now();
   const test::CommandResult r =
       test::runCli("segment " + server.url() + " -o " + dir / "out" + " --timeout 1");
-  test::expectOneLineError(r, "cannot open video", kRunFailed);
+  test::expectOneLineError(r, "cannot open video", test::kExitRunFailed);
   EXPECT_LT(Clock::now() - start, std::chrono::seconds(8));  // the default timeout is 10 s
+}
+
+// The first half of a 100-frame video, served, then silence: a stream that stalls mid-way.
+std::string firstHalfOfAVideo(const test::TempDir& dir) {
+  std::ifstream in(h264(dir, "v.mkv", "320x240", 100), std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  bytes.resize(bytes.size() / 2);
+  return bytes;
+}
+
+// What arrived is segmented and written whole; the stall past --timeout is one line, exit 1.
+TEST(InputFaults, AStreamThatStallsMidwayFailsAtTheTimeout) {
+  const test::TempDir dir;
+  const test::LocalServer server(firstHalfOfAVideo(dir));
+  const auto start = Clock::now();
+  const test::CommandResult r =
+      test::runCli("segment " + server.url() + " -o " + dir / "out" + " -q --timeout 2");
+  test::expectOneLineError(r, "the stream stalled", test::kExitRunFailed);
+  EXPECT_LT(Clock::now() - start, std::chrono::seconds(20));
+  EXPECT_TRUE(fs::exists(dir / "out/00005.png"));
+  EXPECT_FALSE(fs::exists(dir / "out/00099.png"));
 }
 
 TEST(InputFaults, AStalledStreamStopsWithinASecondOfSigint) {
   const test::TempDir dir;
-  const std::string video = h264(dir, "v.mkv", "320x240", 100);
-  std::ifstream in(video, std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  bytes.resize(bytes.size() / 2);  // then silence
-  const test::LocalServer server(bytes);
+  const test::LocalServer server(firstHalfOfAVideo(dir));
   const pid_t pid = test::startCli({"segment", server.url(), "-o", dir / "out", "-q", "--timeout", "0"},
                                    dir / "log.txt");
   ASSERT_GT(pid, 0);
@@ -149,7 +164,7 @@ TEST(InputFaults, AStalledStreamStopsWithinASecondOfSigint) {
 TEST(InputFaults, SpecialFilesAreNamedForWhatTheyAre) {
   const test::TempDir dir;
   test::expectOneLineError(test::runCli("segment /dev/null -o " + dir / "out"),
-                           "cannot open video '/dev/null'", kRunFailed);
+                           "cannot open video '/dev/null'", test::kExitRunFailed);
   // A FIFO is a stream like any other.
   ASSERT_EQ(mkfifo((dir / "fifo").c_str(), 0600), 0);
   const std::string video = h264(dir, "v.mkv", "160x120", 6);
@@ -178,7 +193,7 @@ TEST(InputGrammar, PatternsAndSequenceFoldersReadTheSameFrames) {
     }
   }
   test::expectOneLineError(test::runCli("segment " + dir / "seq/frames/%05d.jpg -o " + dir / "x"),
-                           "no image matches", kRunFailed);
+                           "no image matches", test::kExitRunFailed);
 }
 
 }  // namespace

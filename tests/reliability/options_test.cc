@@ -1,5 +1,7 @@
 // Out-of-range parameters and options are refused with one clear line, never run (an absurd
 // value could otherwise make a frame that never ends).
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <limits>
@@ -16,7 +18,7 @@
 namespace movseg {
 namespace {
 
-// Each bad option: a non-zero exit and a single line "movseg: error: ..." naming what is wrong.
+// Each bad option: exit code 2 and a single line "movseg: error: ..." naming what is wrong.
 TEST(Options, BadCliOptionsExitWithOneLine) {
   test::TempDir dir;
   ASSERT_EQ(test::runCli("synth -o " + (dir / "clip") + " --frames 2 --size 64x48").exit_code, 0);
@@ -44,37 +46,105 @@ TEST(Options, BadCliOptionsExitWithOneLine) {
       {"synth -o " + (dir / "s") + " --size 0x0", "size"},
       {"synth -o " + (dir / "s") + " --frames 0", "frames"},
       {"synth -o " + (dir / "s") + " --objects 9", "objects"},
+      {"bench " + (dir / "clip") + " --size 0x5", "--size"},
+      {"bench " + (dir / "clip") + " --size 9000x10", "--size"},
+      {"bench " + (dir / "clip") + " --methods fast", "--methods"},
+      {"demo -o " + (dir / "d") + " --frames 0", "frames"},
+      {"demo -o " + (dir / "d") + " --lambda -1", "lambda"},
   };
   for (const auto& [arguments, named] : cases) {
-    const test::CommandResult run = test::runCli(arguments);
-    EXPECT_NE(run.exit_code, 0) << arguments;
-    EXPECT_EQ(run.output.rfind("movseg: error: ", 0), 0u) << arguments << "\n" << run.output;
-    EXPECT_EQ(run.output.find('\n'), run.output.size() - 1) << arguments << "\n" << run.output;
-    EXPECT_NE(run.output.find(named), std::string::npos) << arguments << "\n" << run.output;
+    SCOPED_TRACE(arguments);
+    test::expectOneLineError(test::runCli(arguments), named, test::kExitUsage);
   }
+  EXPECT_FALSE(std::filesystem::exists(dir / "d")) << "demo wrote before checking its options";
 }
 
-// Every field of params.def can be set from the command line, by --set and by its own option.
+// A valid value of `field` other than its default, as text.
+std::string otherValue(const FieldInfo& field, const Params& defaults) {
+  const FieldValue value = paramValue(defaults, field.name);
+  switch (field.type) {
+    case FieldType::kBool:
+      return std::get<bool>(value) ? "false" : "true";
+    case FieldType::kChoice: {
+      const std::vector<std::string>& names = field.choices;
+      const auto at = std::find(names.begin(), names.end(), std::get<std::string>(value));
+      return names[static_cast<size_t>(at - names.begin() + 1) % names.size()];
+    }
+    case FieldType::kInt: {
+      const int v = std::get<int>(value), step = std::max(field.step, 1);
+      return std::to_string(v + step <= field.max ? v + step : v - step);
+    }
+    case FieldType::kUnsigned:
+      return std::to_string(std::get<std::uint64_t>(value) + 1);
+    case FieldType::kReal: {
+      const double v = std::get<double>(value);
+      return toText(v < field.max ? v + (field.max - v) / 8 : v - (v - field.min) / 8);
+    }
+    case FieldType::kMatrix:
+      break;
+  }
+  ADD_FAILURE() << field.name << ": no other value";
+  return "";
+}
+
+// Every field of params.def can be set from the command line, by --set and by its own option,
+// to a value other than its default, and the run uses it (its manifest records the settings).
 TEST(Options, EveryParameterIsSetByNameOrByItsOption) {
   test::TempDir dir;
-  ASSERT_EQ(test::runCli("synth -o " + (dir / "clip") + " --frames 2 --size 64x48").exit_code, 0);
+  ASSERT_EQ(test::runCli("synth -o " + (dir / "clip") + " --frames 3 --size 64x48").exit_code, 0);
   std::string by_set, by_option;
   const Params defaults;
+  Params expected;
   for (const FieldInfo& field : paramFields()) {
-    const std::string value = toText(paramValue(defaults, field.name));
+    const std::string value = otherValue(field, defaults);
+    setParam(&expected, field.name, value);
+    ASSERT_NE(toText(paramValue(expected, field.name)), toText(paramValue(defaults, field.name)))
+        << field.name;
     by_set += " --set " + field.name + "=" + value;
     std::string option = field.name;
     for (char& c : option) c = c == '_' ? '-' : c;
     by_option += " --" + option + (field.type == FieldType::kBool ? "=" : " ") + value;
   }
+  expected.check();
   const std::string segment =
       "segment " + (dir / "clip/frames") + " -o " + (dir / "out") + " -q --overwrite";
   for (const std::string& options : {by_set, by_option}) {
+    SCOPED_TRACE(options);
     const test::CommandResult run = test::runCli(segment + options);
-    EXPECT_EQ(run.exit_code, 0) << options << "\n" << run.output;
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    const nlohmann::json settings =
+        nlohmann::json::parse(std::ifstream(dir / "out/movseg-run.json")).at("settings");
+    for (const FieldInfo& field : paramFields()) {
+      EXPECT_EQ(settings.at(field.name), toText(paramValue(expected, field.name))) << field.name;
+    }
   }
+  // demo and bench take the same options (bench all but the method it is given by --methods).
+  std::string bench_options;
+  for (const FieldInfo& field : paramFields()) {
+    if (field.name == "method") continue;
+    bench_options += " --set " + field.name + "=" + otherValue(field, defaults);
+  }
+  const test::CommandResult demo =
+      test::runCli("demo -o " + (dir / "demo") + " --frames 3" + by_option);
+  EXPECT_EQ(demo.exit_code, 0) << demo.output;
+  const test::CommandResult bench =
+      test::runCli("bench " + (dir / "clip") + " --methods dense" + bench_options);
+  EXPECT_EQ(bench.exit_code, 0) << bench.output;
   const test::CommandResult run = test::runCli(segment + " --set static_camera=TRUE --static");
   EXPECT_EQ(run.exit_code, 0) << run.output;
+}
+
+// The short forms README names: --model for motion_model, --static for static_camera.
+TEST(Options, ShortFormsSetTheirParameters) {
+  test::TempDir dir;
+  ASSERT_EQ(test::runCli("synth -o " + (dir / "clip") + " --frames 3 --size 160x120").exit_code, 0);
+  const test::CommandResult run = test::runCli("segment " + (dir / "clip/frames") + " -o " +
+                                              (dir / "out") + " -q --model homography --static");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json settings =
+      nlohmann::json::parse(std::ifstream(dir / "out/movseg-run.json")).at("settings");
+  EXPECT_EQ(settings.at("motion_model"), "homography");
+  EXPECT_EQ(settings.at("static_camera"), "true");
 }
 
 // Booleans of --set are true, false, 1 or 0 in any case, and they take effect: a static camera

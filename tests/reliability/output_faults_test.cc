@@ -19,8 +19,6 @@ namespace movseg {
 namespace {
 namespace fs = std::filesystem;
 
-constexpr int kUsage = 2, kRunFailed = 1;
-
 class OutputFaults : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -63,7 +61,7 @@ TEST_F(OutputFaults, FullDiskForStatsStopsWithWholeLinesUnderTheFinalName) {
     fs::create_directories(dir_ / threads);
     const test::CommandResult r = test::runCliWithFileLimit(
         3000, "segment " + frames() + " -o " + out + " --stats " + stats + " -q --threads " + threads);
-    test::expectOneLineError(r, "stats.jsonl", kRunFailed);
+    test::expectOneLineError(r, "stats.jsonl", test::kExitRunFailed);
     ASSERT_TRUE(fs::exists(stats));
     const int lines = wholeJsonLines(stats);
     EXPECT_GT(lines, 0);
@@ -81,7 +79,7 @@ TEST_F(OutputFaults, FullDiskForPicturesStops) {
     const test::CommandResult r =
         test::runCliWithFileLimit(3000, "segment " + frames() + " -o " + out +
                                         " --method paper --debug -q --threads " + threads);
-    test::expectOneLineError(r, ".png", kRunFailed);
+    test::expectOneLineError(r, ".png", test::kExitRunFailed);
     EXPECT_TRUE(fs::exists(out + "/00000.png"));
     EXPECT_FALSE(fs::exists(out + "/00002.png"));
     EXPECT_FALSE(anyPartFile(dir_.path()));
@@ -91,7 +89,7 @@ TEST_F(OutputFaults, FullDiskForPicturesStops) {
 TEST_F(OutputFaults, FullDiskForAnOverlayVideoLeavesNoUnplayableFile) {
   const test::CommandResult r = test::runCliWithFileLimit(
       8000, "segment " + frames() + " -o " + dir_ / "out" + " --overlay " + dir_ / "o.mp4" + " -q");
-  test::expectOneLineError(r, "o.mp4", kRunFailed);
+  test::expectOneLineError(r, "o.mp4", test::kExitRunFailed);
   EXPECT_FALSE(fs::exists(dir_ / "o.mp4"));
   EXPECT_FALSE(anyPartFile(dir_.path()));
   EXPECT_TRUE(fs::exists(dir_ / "out/00011.png"));  // the masks are complete
@@ -113,7 +111,7 @@ TEST_F(OutputFaults, AnOverlayVideoPlaysWithEveryFrameInH264AtTheInputsRate) {
 TEST_F(OutputFaults, UnknownOverlayExtensionIsRefused) {
   test::expectOneLineError(
       test::runCli("segment " + frames() + " -o " + dir_ / "out" + " --overlay " + dir_ / "x.gif"),
-      "x.gif", kUsage);
+      "x.gif", test::kExitUsage);
   EXPECT_FALSE(fs::exists(dir_ / "x.gif"));
 }
 
@@ -151,7 +149,7 @@ TEST_F(OutputFaults, OutputsInsideTheInputAreRefused) {
   };
   for (const auto& [arguments, named] : cases) {
     SCOPED_TRACE(arguments);
-    test::expectOneLineError(test::runCli(arguments), named, kUsage);
+    test::expectOneLineError(test::runCli(arguments), named, test::kExitUsage);
   }
   EXPECT_EQ(fs::file_size(video), size);
   EXPECT_EQ(test::filesIn(frames()).size(), 12u);
@@ -167,29 +165,31 @@ TEST_F(OutputFaults, ARunIntoAUsedFolderIsRefusedUnlessOverwritten) {
   EXPECT_TRUE(manifest.at("finished").get<bool>());
   EXPECT_EQ(manifest.at("settings").at("lk_window").get<std::string>(), "11");
 
-  test::expectOneLineError(test::runCli(run + " --max-frames 3"), "--overwrite", kUsage);
+  test::expectOneLineError(test::runCli(run + " --max-frames 3"), "--overwrite", test::kExitUsage);
   ASSERT_EQ(test::runCli(run + " --max-frames 3 --overwrite").exit_code, 0);
   EXPECT_TRUE(fs::exists(dir_ / "out/00002.png"));
   EXPECT_FALSE(fs::exists(dir_ / "out/00003.png"));  // the earlier run's masks are gone
 
   // Masks of an unknown run (no manifest, e.g. a run killed before 0.2) are not mixed either.
   fs::remove(dir_ / "out/movseg-run.json");
-  test::expectOneLineError(test::runCli(run), "numbered masks", kUsage);
+  test::expectOneLineError(test::runCli(run), "numbered masks", test::kExitUsage);
 }
 
 TEST_F(OutputFaults, ARunThatCouldNotStartDoesNotClaimItsFolder) {
   const std::string run = "segment " + frames() + " -o " + dir_ / "out" + " -q";
   test::expectOneLineError(test::runCli(run + " --stats " + dir_ / "no/such/folder/s.jsonl"),
-                           "s.jsonl", kRunFailed);
+                           "s.jsonl", test::kExitRunFailed);
   EXPECT_EQ(test::runCli(run).exit_code, 0);
 }
 
 TEST_F(OutputFaults, ExitCodesSayUsageOrRunFailure) {
-  EXPECT_EQ(test::runCli("segment " + frames() + " -o " + dir_ / "out" + " --frobnicate").exit_code, kUsage);
-  EXPECT_EQ(test::runCli("segment " + frames() + " -o " + dir_ / "out" + " --max-frames 0").exit_code, kUsage);
-  EXPECT_EQ(test::runCli("segment " + frames() + " -o " + dir_ / "out" + " --lambda -1").exit_code, kUsage);
-  EXPECT_EQ(test::runCli("segment").exit_code, kUsage);
-  EXPECT_EQ(test::runCli("segment " + dir_ / "missing.mp4 -o " + dir_ / "out").exit_code, kRunFailed);
+  const std::string run = "segment " + frames() + " -o " + dir_ / "out";
+  for (const char* bad : {" --frobnicate", " --max-frames 0", " --lambda -1"}) {
+    EXPECT_EQ(test::runCli(run + bad).exit_code, test::kExitUsage) << bad;
+  }
+  EXPECT_EQ(test::runCli("segment").exit_code, test::kExitUsage);
+  EXPECT_EQ(test::runCli("segment " + dir_ / "missing.mp4 -o " + dir_ / "out").exit_code,
+            test::kExitRunFailed);
   EXPECT_EQ(test::runCli("segment --help").exit_code, 0);
 }
 
@@ -205,7 +205,7 @@ TEST_F(OutputFaults, AClosedStdoutIsNotADeathBySigpipe) {
 
 TEST_F(OutputFaults, AFileNameWithANewlineKeepsTheErrorOnOneLine) {
   test::expectOneLineError(test::runCli("segment '" + dir_ / "a\nb.mp4" + "' -o " + dir_ / "out"),
-                           "no such file", kRunFailed);
+                           "no such file", test::kExitRunFailed);
 }
 
 }  // namespace

@@ -114,13 +114,13 @@ TEST(SynthCli, BadOptionsFailWithOneLine) {
         "--scene cube", "--camera dolly", "--scene plane --camera forward",
         "--scene depth --camera tilt"}) {
     const auto result = runCli("synth -o " + out + " " + bad);
-    EXPECT_NE(result.exit_code, 0) << bad;
+    EXPECT_EQ(result.exit_code, test::kExitUsage) << bad << ": " << result.output;
     EXPECT_EQ(result.output.rfind("movseg: error: ", 0), 0u) << bad << ": " << result.output;
     EXPECT_EQ(result.output.find('\n'), result.output.size() - 1) << bad << ": " << result.output;
     EXPECT_FALSE(std::filesystem::exists(out)) << bad << ": wrote files anyway";
   }
   const auto no_output = runCli("synth --frames 3");
-  EXPECT_NE(no_output.exit_code, 0);
+  EXPECT_EQ(no_output.exit_code, test::kExitUsage);
   EXPECT_EQ(no_output.output.rfind("movseg: error: ", 0), 0u) << no_output.output;
 }
 
