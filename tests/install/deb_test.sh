@@ -38,6 +38,10 @@ python() { PYTHONPATH=$root/$python_dir PYTHONDONTWRITEBYTECODE=1 /usr/bin/pytho
 module_version=$(python -c 'import movseg; print("movseg", movseg.__version__)')
 [ "$module_version" = "$("$cli" --version)" ] || fail "$module_version, but $("$cli" --version)"
 python -m movseg segment "$root/clip/frames" -o "$root/masks-python" -q
+for mask in "$root/masks"/*.png; do
+  cmp -s "$mask" "$root/masks-python/$(basename "$mask")" ||
+    fail "python -m movseg wrote another $(basename "$mask") than the CLI"
+done
 
 GST_PLUGIN_PATH=$root/$libdir/gstreamer-1.0 GST_REGISTRY=$root/registry.bin \
   gst-inspect-1.0 movseg >/dev/null || fail "gst-inspect-1.0 does not find the packaged element"
