@@ -3,6 +3,9 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -83,9 +86,19 @@ TEST(SegmentCli, DebugWritesEachStagesPictures) {
   for (const char* stage : {"matches", "difference", "features", "features_refined", "mask"}) {
     EXPECT_TRUE(fs::exists(dir / "paper/debug/" + stage + "/00002.png")) << stage;
   }
-  ASSERT_EQ(test::runCli("segment " + frames + " -o " + dir / "dense" + " --debug -q").exit_code, 0);
-  for (const char* stage : {"residual", "carried", "confirmation", "uncovered", "unary", "mask"}) {
-    EXPECT_TRUE(fs::exists(dir / "dense/debug/" + stage + "/00002.png")) << stage;
+  // dense, on 640x480 frames: its stages at the working scale, the edges and mask at the input's.
+  const std::string large = dir / "large";
+  ASSERT_EQ(test::runCli("synth -o " + large + " --frames 3 --size 640x480").exit_code, 0);
+  ASSERT_EQ(
+      test::runCli("segment " + large + "/frames -o " + dir / "dense" + " --debug -q").exit_code,
+      0);
+  const std::vector<std::pair<std::string, cv::Size>> stages{
+      {"residual", {320, 240}}, {"carried", {320, 240}}, {"confirmation", {320, 240}},
+      {"uncovered", {320, 240}}, {"unary", {320, 240}}, {"edges", {640, 480}},
+      {"mask", {640, 480}}};
+  for (const auto& [stage, size] : stages) {
+    const cv::Mat picture = cv::imread(dir / "dense/debug/" + stage + "/00002.png");
+    EXPECT_EQ(picture.size(), size) << stage;
   }
 }
 
