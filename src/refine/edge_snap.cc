@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include <opencv2/core/hal/intrin.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "core/frame.h"
@@ -33,6 +34,24 @@ int reflected(int i, int n) {
   return i >= 0 && i < n ? i : cv::borderInterpolate(i, n, cv::BORDER_REFLECT);
 }
 
+// out[x] = (first[x] + first[x + 1] + ... + first[x + side - 1]) * scale, added left to right,
+// four outputs at a time: each sum stays in a register (a pass over the row per term had
+// cost twice the instructions).
+void windowAcross(const float* first, int w, int side, float scale, float* out) {
+  const cv::v_float32x4 scale_v = cv::v_setall_f32(scale);
+  int x = 0;
+  for (; x + 4 <= w; x += 4) {
+    cv::v_float32x4 sum = cv::v_load(first + x);
+    for (int d = 1; d < side; ++d) sum += cv::v_load(first + x + d);
+    cv::v_store(out + x, sum * scale_v);
+  }
+  for (; x < w; ++x) {
+    float sum = first[x];
+    for (int d = 1; d < side; ++d) sum += first[x + d];
+    out[x] = sum * scale;
+  }
+}
+
 // The mean over each pixel's window of a CV_32F image, the window reflected at the borders (as
 // cv::ximgproc::guidedFilter's). Column sums run down the image and each row's window sums
 // across it, in floats, in loops the compiler vectorises: cv::boxFilter sums floats in doubles,
@@ -55,13 +74,7 @@ void windowMean(const cv::Mat& src, int radius, std::vector<float>* scratch, cv:
       column[-d] = column[d - 1];
       column[w - 1 + d] = column[w - d];
     }
-    float* out = mean->ptr<float>(y);
-    const float* first = column - radius;
-    for (int x = 0; x < w; ++x) out[x] = first[x];
-    for (int d = 1; d < side; ++d) {
-      for (int x = 0; x < w; ++x) out[x] += first[x + d];
-    }
-    for (int x = 0; x < w; ++x) out[x] *= scale;
+    windowAcross(column - radius, w, side, scale, mean->ptr<float>(y));
     if (y + 1 == h) return;
     const float* leaving = src.ptr<float>(reflected(y - radius, h));
     const float* entering = src.ptr<float>(reflected(y + radius + 1, h));
