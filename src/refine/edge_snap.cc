@@ -131,6 +131,41 @@ void openWithCross(const cv::Mat& mask, cv::Rect region, std::vector<uchar>* lin
   }
 }
 
+// One row of the snapped mask: the filter's label, 255 * (slope * brightness + offset) as
+// cv::saturate_cast<uchar> makes it, except where the opening removed the pixel (a thin part,
+// kept); *state what the filter did. Sixteen pixels at a time: cvtps2dq rounds as cvRound
+// does (to nearest even; INT_MIN beyond int's range, as cvRound), and the saturating packs to
+// 16 then 8 bits clamp as saturate_cast does.
+void snapRow(const float* brightness, const float* slope, const float* offset, const uchar* opened,
+             int width, uchar* out, uchar* state) {
+  const cv::v_float32x4 full = cv::v_setall_f32(255.f);
+  const cv::v_uint8x16 thin_state = cv::v_setall_u8(kThin);
+  const cv::v_uint8x16 changed_state = cv::v_setall_u8(kChanged);
+  int x = 0;
+  for (; x + 16 <= width; x += 16) {
+    cv::v_int32x4 rounded[4];
+    for (int k = 0; k < 4; ++k) {
+      const int at = x + 4 * k;
+      rounded[k] = cv::v_round(
+          full * (cv::v_load(slope + at) * cv::v_load(brightness + at) + cv::v_load(offset + at)));
+    }
+    const cv::v_uint8x16 filtered =
+        cv::v_pack_u(cv::v_pack(rounded[0], rounded[1]), cv::v_pack(rounded[2], rounded[3]));
+    const cv::v_uint8x16 before = cv::v_load(out + x);
+    const cv::v_uint8x16 thin = before != cv::v_load(opened + x);  // all ones where thin
+    const cv::v_uint8x16 value = filtered | thin;
+    cv::v_store(state + x, cv::v_select(thin, thin_state, (value != before) & changed_state));
+    cv::v_store(out + x, value);
+  }
+  for (; x < width; ++x) {
+    const bool thin = out[x] != opened[x];
+    const uchar value =
+        thin ? 255 : cv::saturate_cast<uchar>(255.f * (slope[x] * brightness[x] + offset[x]));
+    state[x] = thin ? kThin : value != out[x] ? kChanged : kKept;
+    out[x] = value;
+  }
+}
+
 }  // namespace
 
 cv::Mat EdgeSnap::snap(const cv::Mat& mask, const cv::Mat& grey, int radius,
@@ -186,19 +221,9 @@ cv::Mat EdgeSnap::snap(const cv::Mat& mask, const cv::Mat& grey, int radius,
   openWithCross(mask, region, &line_, &edge_, &eroded_, &opened_);
   mask.copyTo(snapped_);
   for (int y = 0; y < guide_.rows; ++y) {
-    const float* brightness = guide_.ptr<float>(y);
-    const float* slope = mean_slope_.ptr<float>(y);
-    const float* offset = mean_offset_.ptr<float>(y);
-    const uchar* opened = opened_.ptr<uchar>(y);
-    uchar* out = snapped_.ptr<uchar>(y + region.y) + region.x;
-    uchar* state = state_.ptr<uchar>(y);
-    for (int x = 0; x < guide_.cols; ++x) {
-      const bool thin = out[x] != opened[x];
-      const uchar value =
-          thin ? 255 : cv::saturate_cast<uchar>(255.f * (slope[x] * brightness[x] + offset[x]));
-      state[x] = thin ? kThin : value != out[x] ? kChanged : kKept;
-      out[x] = value;
-    }
+    snapRow(guide_.ptr<float>(y), mean_slope_.ptr<float>(y), mean_offset_.ptr<float>(y),
+            opened_.ptr<uchar>(y), guide_.cols, snapped_.ptr<uchar>(y + region.y) + region.x,
+            state_.ptr<uchar>(y));
   }
   if (output_grey.empty() || output_grey.size() == mask.size()) return snapped_;
   return onFinerEdges(snapped_, region, output_grey);
