@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -36,10 +37,13 @@ class ColourModel {
   void reset();
 
  private:
-  // Inline: called for every pixel twice a frame.
+  // Inline: called for the pixels rowBins() does not do sixteen at a time.
   int binOf(const cv::Vec3b& c) const {
     return bin_bits_[0][c[0]] | bin_bits_[1][c[1]] | bin_bits_[2][c[2]];
   }
+
+  // The bins of a row of `width` pixels, into row_bins_.
+  const std::uint16_t* rowBins(const cv::Vec3b* row, int width) const;
 
   Params params_;
   // Per channel and 8-bit level, its bits of the bin: the first channel's are the highest.
@@ -50,6 +54,8 @@ class ColourModel {
   std::vector<float> foreground_, background_;
   std::vector<float> evidence_;              // per bin: what addEvidence() adds
   std::vector<float> count_fg_, count_bg_;  // scratch of update()
+  // Scratch of rowBins().
+  mutable std::vector<std::uint16_t> row_bins_;
 };
 
 }  // namespace movseg

@@ -68,8 +68,9 @@ void uncoveredPixels(const cv::Mat& carried, const cv::Mat& previous_mask,
 void dropUncovered(const cv::Mat& carried, const cv::Mat& previous_mask, const cv::Mat& camera_map,
                    cv::Mat* evidence);
 
-// Adds what the carried mask says to `evidence`: read as a probability p softened to
-// [memory_floor, 1 - memory_floor], it weighs in as memory_weight * log(p / (1 - p)).
-void addMemory(const cv::Mat& carried, const Params& params, cv::Mat* evidence);
+// `evidence` plus what the carried mask says, into *with_memory: read as a probability p
+// softened to [memory_floor, 1 - memory_floor], it weighs in as memory_weight * log(p / (1 - p)).
+void addMemory(const cv::Mat& carried, const Params& params, const cv::Mat& evidence,
+               cv::Mat* with_memory);
 
 }  // namespace movseg

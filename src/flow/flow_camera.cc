@@ -325,24 +325,45 @@ void residualMotion(const cv::Mat& flow_map, const cv::Mat& camera_map, const Fl
 
 void flowMap(const cv::Mat& flow, cv::Mat* map) {
   map->create(flow.size(), CV_32FC2);
+  const int floats = 2 * flow.cols;
   for (int y = 0; y < flow.rows; ++y) {
-    const auto* f = flow.ptr<cv::Vec2f>(y);
-    auto* m = map->ptr<cv::Vec2f>(y);
-    for (int x = 0; x < flow.cols; ++x) m[x] = cv::Vec2f(x + f[x][0], y + f[x][1]);
+    const float* f = flow.ptr<float>(y);
+    float* m = map->ptr<float>(y);
+    // Two pixels (x, y) and (x + 1, y) at a time, interleaved as the flow is.
+    const auto fy = static_cast<float>(y);
+    const cv::v_float32x4 two_pixels(0.f, fy, 1.f, fy), two(2.f, 0.f, 2.f, 0.f);
+    cv::v_float32x4 at = two_pixels;
+    int i = 0;
+    for (; i + 4 <= floats; i += 4, at += two) cv::v_store(m + i, at + cv::v_load(f + i));
+    for (; i < floats; i += 2) m[i] = static_cast<float>(i / 2) + f[i], m[i + 1] = fy + f[i + 1];
   }
 }
 
 void cameraMap(const cv::Matx33d& model, cv::Size size, cv::Mat* map) {
   map->create(size, CV_32FC2);
   const cv::Matx33f m(model);
+  using cv::v_float32x4;
+  const auto all = [](float v) { return cv::v_setall_f32(v); };
   for (int y = 0; y < size.height; ++y) {
-    auto* out = map->ptr<cv::Vec2f>(y);
+    float* out = map->ptr<float>(y);
     const float fy = static_cast<float>(y);
-    for (int x = 0; x < size.width; ++x) {
+    // Each row's terms in y once; the sums in the order of the scalar expression below.
+    const float wy = m(2, 1) * fy, xy = m(0, 1) * fy, yy = m(1, 1) * fy;
+    int x = 0;
+    for (v_float32x4 fx(0.f, 1.f, 2.f, 3.f); x + 4 <= size.width; x += 4, fx += all(4.f)) {
+      const v_float32x4 w = all(m(2, 0)) * fx + all(wy) + all(m(2, 2));
+      const v_float32x4 to_x = (all(m(0, 0)) * fx + all(xy) + all(m(0, 2))) / w;
+      const v_float32x4 to_y = (all(m(1, 0)) * fx + all(yy) + all(m(1, 2))) / w;
+      v_float32x4 pixels[2];
+      cv::v_zip(to_x, to_y, pixels[0], pixels[1]);
+      cv::v_store(out + 2 * x, pixels[0]);
+      cv::v_store(out + 2 * x + 4, pixels[1]);
+    }
+    for (; x < size.width; ++x) {
       const float fx = static_cast<float>(x);
-      const float w = m(2, 0) * fx + m(2, 1) * fy + m(2, 2);
-      out[x] = cv::Vec2f((m(0, 0) * fx + m(0, 1) * fy + m(0, 2)) / w,
-                         (m(1, 0) * fx + m(1, 1) * fy + m(1, 2)) / w);
+      const float w = m(2, 0) * fx + wy + m(2, 2);
+      out[2 * x] = (m(0, 0) * fx + xy + m(0, 2)) / w;
+      out[2 * x + 1] = (m(1, 0) * fx + yy + m(1, 2)) / w;
     }
   }
 }

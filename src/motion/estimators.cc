@@ -101,15 +101,21 @@ bool leastSquaresHomography(const std::vector<cv::Point2f>& x, const std::vector
   const cv::Matx33d tx = normalisation(x), ty = normalisation(y);
   if (tx(2, 2) == 0 || ty(2, 2) == 0) return false;
   cv::Matx<double, 9, 9> ata = cv::Matx<double, 9, 9>::zeros();
+  // A point's two rows of A, (0, 0, 0, -p, -1, q1 p, q1) and (p, 1, 0, 0, 0, -q0 p, -q0), each
+  // without the three zeros the other row fills: their products would add +-0, which changes
+  // no sum (A^T A's entries start at +0 and never become -0), so they are left out.
+  constexpr int kFirstRow[6] = {3, 4, 5, 6, 7, 8}, kSecondRow[6] = {0, 1, 2, 6, 7, 8};
+  const auto add = [&ata](const int* columns, const double* r) {
+    for (int a = 0; a < 6; ++a) {
+      for (int b = a; b < 6; ++b) ata(columns[a], columns[b]) += r[a] * r[b];
+    }
+  };
   for (size_t i = 0; i < x.size(); ++i) {
     const cv::Vec3d p = tx * cv::Vec3d(x[i].x, x[i].y, 1), q = ty * cv::Vec3d(y[i].x, y[i].y, 1);
-    const double rows[2][9] = {{0, 0, 0, -p[0], -p[1], -1, q[1] * p[0], q[1] * p[1], q[1]},
-                               {p[0], p[1], 1, 0, 0, 0, -q[0] * p[0], -q[0] * p[1], -q[0]}};
-    for (const double* r : rows) {
-      for (int a = 0; a < 9; ++a) {
-        for (int b = a; b < 9; ++b) ata(a, b) += r[a] * r[b];
-      }
-    }
+    const double first[6] = {-p[0], -p[1], -1, q[1] * p[0], q[1] * p[1], q[1]};
+    const double second[6] = {p[0], p[1], 1, -q[0] * p[0], -q[0] * p[1], -q[0]};
+    add(kFirstRow, first);
+    add(kSecondRow, second);
   }
   for (int a = 0; a < 9; ++a) {
     for (int b = 0; b < a; ++b) ata(a, b) = ata(b, a);

@@ -212,12 +212,16 @@ class DensePipeline : public Pipeline {
       if (uncovers) uncoveredPixels(carried, mask_, camera_map_, &picture);
       return picture;
     });
-    evidence.copyTo(pair_evidence_);
-    if (!carried.empty()) addMemory(carried, params_, &evidence);
+    // The pair's evidence is kept for the colour model: memory goes into an image of its own.
+    const cv::Mat* remembered = &evidence;
+    if (!carried.empty()) {
+      addMemory(carried, params_, evidence, &with_memory_);
+      remembered = &with_memory_;
+    }
     cv::Mat& unary = unary_;
-    colour_.addEvidence(a.bgr, evidence, &unary);
+    colour_.addEvidence(a.bgr, *remembered, &unary);
     addBias(params_.foreground_bias, &unary);
-    colour_.update(a.bgr, evidence, pair_evidence_);
+    colour_.update(a.bgr, *remembered, evidence);
     diag.classify_ms = millisecondsSince(start);
 
     start = Clock::now();
@@ -291,7 +295,7 @@ class DensePipeline : public Pipeline {
   cv::Mat mask_;  // the last frame's, at the working scale
   // The pair's images, in the buffers of the last pair's.
   cv::Mat carried_, evidence_, unary_, residual_, confirmation_;
-  cv::Mat pair_evidence_;  // the pair's evidence before memory, for the colour model
+  cv::Mat with_memory_;  // the pair's evidence (evidence_) with the carried mask's added
   cv::Mat camera_map_;
   PhotometricCheck photometric_;
   EvidenceCut cut_;

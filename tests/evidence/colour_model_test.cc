@@ -137,5 +137,30 @@ TEST(ColourModel, TheMoversColoursFadeWhenNoMoverIsSeen) {
   EXPECT_GE(colourEvidence(unseen, bgr)[0], 0.f);
 }
 
+// Bins worked out sixteen pixels at a time (rowBins) are those of the per-pixel tables: a
+// model learning from a frame and a model learning from the same pixels as one column (one
+// pixel per row: all looked up) add the same colour evidence to the bit, at every bin size.
+TEST(ColourModel, BinsOfWideRowsAreThoseOfSinglePixels) {
+  cv::RNG rng(7);
+  for (int bits = 1; bits <= 6; ++bits) {
+    Params params;
+    params.colour_bits = bits;
+    cv::Mat bgr(24, 53, CV_8UC3), evidence(bgr.size(), CV_32F);
+    rng.fill(bgr, cv::RNG::UNIFORM, 0, 256);
+    rng.fill(evidence, cv::RNG::UNIFORM, -3.f, 3.f);
+    const cv::Mat column_bgr = bgr.reshape(0, static_cast<int>(bgr.total()));
+    const cv::Mat column_evidence = evidence.reshape(0, static_cast<int>(evidence.total()));
+    ColourModel wide(params), narrow(params);
+    wide.update(bgr, evidence, evidence);
+    narrow.update(column_bgr, column_evidence, column_evidence);
+    cv::Mat from_wide, from_narrow;
+    wide.addEvidence(bgr, evidence, &from_wide);
+    narrow.addEvidence(column_bgr, column_evidence, &from_narrow);
+    const cv::Mat wide_as_column = from_wide.reshape(0, static_cast<int>(bgr.total()));
+    EXPECT_EQ(cv::norm(wide_as_column, from_narrow, cv::NORM_INF), 0) << bits << " bits";
+    EXPECT_NE(cv::norm(from_wide, evidence, cv::NORM_INF), 0) << "colour said nothing";
+  }
+}
+
 }  // namespace
 }  // namespace movseg
