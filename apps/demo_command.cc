@@ -1,5 +1,6 @@
 // movseg demo: what `make run` runs. Writes a synthetic moving-camera clip with exact ground
-// truth, segments it with the paper's method, scores the masks and prints the result.
+// truth, segments it (the default method unless --method says otherwise), scores the masks and
+// prints the result.
 #include <filesystem>
 #include <iostream>
 #include <memory>

@@ -79,19 +79,12 @@ void rejectSwappedArguments(const EvalOptions& options, const std::vector<GtSequ
   }
 }
 
-// "out" for "runs/out/": the prediction folder's own name labels its scores in the report.
-std::string folderLabel(const std::string& path) {
-  std::filesystem::path folder = std::filesystem::path(path).lexically_normal();
-  if (folder.filename().empty()) folder = folder.parent_path();
-  return folder.filename().string();
-}
-
 void writeReport(const EvalOptions& options, const std::vector<GtSequence>& sequences,
                  const std::vector<SequenceScore>& scores) {
   std::vector<ReportRun> runs;
   for (size_t i = 0; i < sequences.size(); ++i) {
     runs.push_back(reportRun(sequences[i], scores[i], predictionDir(sequences[i], options.pred),
-                             folderLabel(options.pred), -1));
+                             folderName(options.pred), -1));
   }
   writeHtmlReport(options.html_file, "movseg eval: " + options.pred,
                   "predictions '" + options.pred + "' against the ground truth '" + options.gt +

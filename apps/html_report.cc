@@ -58,13 +58,6 @@ std::string escaped(const std::string& text) {
   return html;
 }
 
-std::string fixed(double value, int decimals) {
-  if (std::isnan(value)) return "-";
-  char text[32];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
-}
-
 // The frame under the masks: the video's, else a grey canvas (a plain mask folder has none).
 cv::Mat backgroundOf(const GtSequence& sequence, int frame, cv::Size size) {
   const std::map<int, std::string> frames = numberedImages(sequence.frames_dir);
@@ -124,12 +117,12 @@ std::string tableRow(const ScoreSummary& row, const std::string& method, double 
   std::string html = "<tr" + (css_class.empty() ? "" : " class=\"" + css_class + "\"") + "><td>" +
                      escaped(row.name) + "</td><td class=\"text\">" + escaped(method) + "</td>";
   for (const std::string& cell :
-       {std::to_string(row.frames), fixed(row.j, 3), fixed(row.j_recall, 3), fixed(row.f, 3),
-        fixed(row.error_rate, 2), fixed(row.precision, 3), fixed(row.recall, 3),
-        fixed(row.f1, 3)}) {
+       {std::to_string(row.frames), formatFixed(row.j, 3), formatFixed(row.j_recall, 3), formatFixed(row.f, 3),
+        formatFixed(row.error_rate, 2), formatFixed(row.precision, 3), formatFixed(row.recall, 3),
+        formatFixed(row.f1, 3)}) {
     html += "<td>" + cell + "</td>";
   }
-  if (timed) html += "<td>" + fixed(ms_per_frame, 2) + "</td>";
+  if (timed) html += "<td>" + formatFixed(ms_per_frame, 2) + "</td>";
   return html + "</tr>\n";
 }
 
@@ -192,7 +185,7 @@ std::string worstFramesStrip(const ReportRun& run) {
   for (const Thumbnail& thumbnail : run.worst) {
     html += "<figure><img alt=\"frame " + std::to_string(thumbnail.frame) + "\" src=\"" +
             thumbnail.data_uri + "\"><figcaption>frame " + std::to_string(thumbnail.frame) +
-            ", J " + fixed(thumbnail.j, 3) + "</figcaption></figure>";
+            ", J " + formatFixed(thumbnail.j, 3) + "</figcaption></figure>";
   }
   return html + "</div>\n";
 }

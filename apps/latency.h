@@ -15,7 +15,6 @@ class LatencyHistogram {
     ++bins_[std::min(bin, bins_.size() - 1)];
     ++count_;
   }
-  std::int64_t count() const { return count_; }
   // The median, to half a bin (0 when empty).
   double median() const {
     std::int64_t seen = 0;

@@ -24,6 +24,7 @@
 #include "concurrent.h"
 #include "core/frame.h"
 #include "core/worker.h"
+#include "core/text.h"
 #include "io/atomic_write.h"
 #include "io/frame_source.h"
 #include "io/overlay.h"
@@ -71,32 +72,11 @@ class StopOnSignal {
   static inline void (*previous_term_)(int) = nullptr;
 };
 
-void makeFolder(const std::string& path) {
-  std::error_code error;
-  fs::create_directories(path, error);
-  if (error || !fs::is_directory(path)) {
-    throw std::runtime_error("cannot create output folder '" + path + "'" +
-                             (error ? ": " + error.message() : ""));
-  }
-}
-
-std::string frameName(int index) {
-  char name[32];
-  std::snprintf(name, sizeof name, "%05d.png", index);
-  return name;
-}
-
-// A name frameName() gives: five or more digits, ".png".
+// A name frameFileName() gives: five or more digits, ".png".
 bool isFrameName(const fs::path& path) {
   const std::string stem = path.stem().string();
   return path.extension() == ".png" && stem.size() >= 5 &&
          std::all_of(stem.begin(), stem.end(), [](unsigned char c) { return std::isdigit(c); });
-}
-
-std::string lowercase(std::string text) {
-  std::transform(text.begin(), text.end(), text.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text;
 }
 
 bool isVideoPath(const std::string& path) {
@@ -157,7 +137,7 @@ nlohmann::json runIdentity(const SegmentOptions& options) {
 // another run's (a manifest, or numbered masks without one) is refused unless `overwrite`, which
 // removes that run's masks, debug pictures and overlay frames first: runs never mix silently.
 void claimOutputFolder(const SegmentOptions& options) {
-  makeFolder(options.output_dir);
+  makeOutputFolder(options.output_dir);
   const fs::path dir(options.output_dir);
   const fs::path manifest = dir / kManifestName;
   std::vector<fs::path> previous;
@@ -253,13 +233,13 @@ class OverlayWriter {
       const fs::path p(target_);
       temporary_ = (p.parent_path() / (p.stem().string() + ".part" + p.extension().string())).string();
     } else {
-      makeFolder(target_);
+      makeOutputFolder(target_);
     }
   }
   void write(int index, const cv::Mat& picture) {
     if (target_.empty()) return;
     if (temporary_.empty()) {
-      writeImageAtomic((fs::path(target_) / frameName(index)).string(), picture);
+      writeImageAtomic((fs::path(target_) / frameFileName(index)).string(), picture);
       return;
     }
     if (!video_.isOpened()) open(picture.size());
@@ -317,8 +297,8 @@ void writeDebugPictures(const std::string& folder, int index, const Result& resu
   for (const auto& [name, picture] : result.debug) {
     if (picture.empty()) continue;
     const fs::path dir = fs::path(folder) / name;
-    makeFolder(dir.string());
-    writeImageAtomic((dir / frameName(index)).string(), picture);
+    makeOutputFolder(dir.string());
+    writeImageAtomic((dir / frameFileName(index)).string(), picture);
   }
 }
 
@@ -345,8 +325,9 @@ class RunOutputs {
   void write(int index, const Result& result, const cv::Mat& picture, const SourceReport& source,
              int decode_errors) {
     const fs::path dir(options_.output_dir);
-    writeImageAtomic((dir / frameName(index)).string(), result.mask);
-    if (options_.debug) writeDebugPictures((dir / "debug").string(), index, result);
+    writeImageAtomic((dir / frameFileName(index)).string(), result.mask);
+    // Pictures come with the result when asked for, by --debug or --debug-images alike.
+    if (!result.debug.empty()) writeDebugPictures((dir / "debug").string(), index, result);
     if (stats_) stats_->append(statsLine(index, result.diagnostics, decode_errors).dump());
     overlay_.write(index, picture);
     frames_ = index + 1;

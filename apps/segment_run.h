@@ -81,11 +81,12 @@ std::vector<SegmentOptions> perInputRuns(const SegmentOptions& shared,
 // is 'walk', a folder its own name, and a layout folder ('walk/frames') its parent's.
 std::string inputName(const std::string& input);
 
-// "123 frames in 1.2 s (101.3 fps, median 9.1 ms/frame)", and what went wrong with the input.
+// "123 frames in 1.20 s (101.3 fps overall, median 9.10 ms/frame)", and what went wrong with
+// the input.
 std::string describeSummary(const SegmentSummary& summary);
 
 // What was wrong with the input ("3 decode errors (last: ...)", "47 of 104 frames: the video
-// is truncated", "no frame for 10 s"), or "" when nothing was.
+// is truncated", "no frame within the timeout: the stream stalled"), or "" when nothing was.
 std::string describeInputProblems(const SegmentSummary& summary);
 
 }  // namespace movseg::cli

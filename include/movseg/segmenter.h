@@ -1,4 +1,4 @@
-// movseg — moving object segmentation for freely moving cameras, online, two frames at a time.
+// movseg — moving object segmentation for freely moving cameras, online, frame by frame.
 #pragma once
 
 #include <map>
@@ -36,8 +36,10 @@ struct Result {
   std::map<std::string, cv::Mat> debug;
 };
 
-// Segments the moving objects of a video, one frame at a time. Each call compares the frame
-// with the previous one only. Not thread-safe: use one Segmenter per stream.
+// Segments the moving objects of a video, one frame at a time: each frame's mask depends on it
+// and the frames before it only (`paper` compares it with the previous frame; `dense` also
+// carries the last mask, colour models and the last pairs' depth). Not thread-safe: use one
+// Segmenter per stream.
 class Segmenter {
  public:
   // Throws std::invalid_argument when params.check() fails.

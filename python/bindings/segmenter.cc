@@ -80,8 +80,8 @@ py::object movingCameraSubtractor(const Params& params) {
 void bindSegmenter(py::module_& module) {
   py::class_<PySegmenter>(module, "Segmenter",
                           "Segments the moving objects of a video, one frame at a time; each "
-                          "frame is compared with the previous one only. Use one Segmenter per "
-                          "stream.")
+                          "frame's mask depends on it and the frames before it only. Use one "
+                          "Segmenter per stream.")
       .def(py::init([](const Params& p) { return std::make_unique<PySegmenter>(std::in_place, p); }),
            py::arg("params") = Params(), "Raises ValueError when the parameters are out of range.")
       .def("process", &process, py::arg("frame"), py::kw_only(), py::arg("rgb") = false,

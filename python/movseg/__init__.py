@@ -1,4 +1,4 @@
-"""movseg: moving object segmentation for freely moving cameras, online, two frames at a time.
+"""movseg: moving object segmentation for freely moving cameras, online, frame by frame.
 
     import cv2, movseg
     segmenter = movseg.Segmenter(movseg.Params(lambda_=400))

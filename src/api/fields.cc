@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "core/text.h"
+
 namespace movseg {
 
 template <>
@@ -90,12 +92,6 @@ void checkField(const FieldInfo& info, T value) {
   }
 }
 
-std::string lowered(std::string text) {
-  std::transform(text.begin(), text.end(), text.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text;
-}
-
 // The whole text as a finite or infinite double (range checks come after).
 double parseReal(const FieldInfo& info, const std::string& text) {
   try {
@@ -110,13 +106,13 @@ double parseReal(const FieldInfo& info, const std::string& text) {
 template <typename T>
 T parseValue(const FieldInfo& info, const std::string& text) {
   if constexpr (std::is_same_v<T, bool>) {
-    const std::string word = lowered(text);
+    const std::string word = lowercase(text);
     if (word == "true" || word == "1") return true;
     if (word == "false" || word == "0") return false;
     reject(info, "true, false, 1 or 0", "'" + text + "'");
   } else if constexpr (std::is_enum_v<T>) {
     const auto& names = info.choices;
-    const auto found = std::find(names.begin(), names.end(), lowered(text));
+    const auto found = std::find(names.begin(), names.end(), lowercase(text));
     if (found == names.end()) reject(info, choiceRule(info), "'" + text + "'");
     return static_cast<T>(found - names.begin());
   } else if constexpr (std::is_same_v<T, std::uint64_t>) {

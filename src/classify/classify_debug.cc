@@ -4,14 +4,20 @@
 
 namespace movseg {
 
+cv::Scalar labelColour(FeatureLabel label) {
+  switch (label) {
+    case FeatureLabel::kForeground: return cv::Scalar(0, 0, 255);
+    case FeatureLabel::kBackground: return cv::Scalar(255, 128, 0);  // light enough on dark ground
+    case FeatureLabel::kUnknown: break;
+  }
+  return cv::Scalar(0, 255, 255);
+}
+
 cv::Mat drawFeatures(const cv::Mat& bgr, const std::vector<cv::Point2f>& points,
                      const std::vector<FeatureLabel>& labels) {
   cv::Mat canvas = bgr.clone();
   for (size_t i = 0; i < points.size(); ++i) {
-    cv::Scalar colour(0, 255, 255);
-    if (labels[i] == FeatureLabel::kForeground) colour = cv::Scalar(0, 0, 255);
-    if (labels[i] == FeatureLabel::kBackground) colour = cv::Scalar(255, 0, 0);
-    cv::circle(canvas, points[i], 2, colour, cv::FILLED, cv::LINE_AA);
+    cv::circle(canvas, points[i], 2, labelColour(labels[i]), cv::FILLED, cv::LINE_AA);
   }
   return canvas;
 }

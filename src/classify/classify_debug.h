@@ -9,7 +9,10 @@
 
 namespace movseg {
 
-// Feature points on the frame: foreground red, background blue, unknown yellow.
+// A feature's colour in every picture (BGR): foreground red, background blue, unknown yellow.
+cv::Scalar labelColour(FeatureLabel label);
+
+// Feature points on the frame, as dots of their label's colour.
 cv::Mat drawFeatures(const cv::Mat& bgr, const std::vector<cv::Point2f>& points,
                      const std::vector<FeatureLabel>& labels);
 

@@ -107,13 +107,6 @@ std::vector<std::string> subfolders(const std::string& folder) {
   return result;
 }
 
-// "data/blackswan/" -> "blackswan".
-std::string folderName(const std::string& folder) {
-  fs::path path = fs::absolute(folder).lexically_normal();
-  if (path.filename().empty()) path = path.parent_path();
-  return path.filename().string();
-}
-
 // A mask folder given on its own is named after its sequence: "blackswan/masks" ->
 // "blackswan", as the layouts of GtFormat name their mask folders.
 std::string sequenceName(const std::string& folder, GtFormat format) {
@@ -241,6 +234,12 @@ std::string gtFormatName(GtFormat format) {
     if (value == format) return name;
   }
   return "";
+}
+
+std::string folderName(const std::string& folder) {
+  fs::path path = fs::absolute(folder).lexically_normal();
+  if (path.filename().empty()) path = path.parent_path();
+  return path.filename().string();
 }
 
 int frameNumber(const std::string& path) {

@@ -32,6 +32,10 @@ std::string gtFormatName(GtFormat format);
 // does not end in digits.
 int frameNumber(const std::string& path);
 
+// A folder's own name, also when given with a trailing slash or as ".": "data/blackswan/" ->
+// "blackswan".
+std::string folderName(const std::string& folder);
+
 // The images of `folder` by frame number; none when the folder does not exist. Throws
 // std::runtime_error when a file has no frame number or two files have the same one.
 std::map<int, std::string> numberedImages(const std::string& folder);
@@ -93,6 +97,9 @@ std::map<int, std::string> matchPredictions(const GtSequence& sequence,
 // scoreSequence() of every sequence with its predictionDir().
 std::vector<SequenceScore> scoreDataset(const std::vector<GtSequence>& sequences,
                                         const std::string& pred_path);
+
+// `value` with `decimals` digits after the point; "-" for NaN (nothing to score).
+std::string formatFixed(double value, int decimals);
 
 // The table printed by `movseg eval`: one row per sequence, a mean row when there are several,
 // and footnotes (the first frame is not counted; position matching).

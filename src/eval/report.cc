@@ -18,13 +18,6 @@ const char* const kLegend =
     "J recall: share of frames with J > 0.5. Error: mislabelled pixels in % (eq. 12).\n"
     "P, R, F1: of the foreground pixels summed over the sequence.";
 
-std::string fixed(double value, int decimals) {
-  if (std::isnan(value)) return "-";
-  char text[32];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
-}
-
 std::string padLeft(const std::string& text, size_t width) {
   return std::string(width - std::min(width, text.size()), ' ') + text;
 }
@@ -41,13 +34,13 @@ std::vector<std::string> tableCells(const ScoreSummary& row) {
           std::to_string(row.frames),
           std::to_string(row.skipped),
           std::to_string(row.missing),
-          fixed(row.j, 3),
-          fixed(row.j_recall, 3),
-          fixed(row.f, 3),
-          fixed(row.error_rate, 2),
-          fixed(row.precision, 3),
-          fixed(row.recall, 3),
-          fixed(row.f1, 3)};
+          formatFixed(row.j, 3),
+          formatFixed(row.j_recall, 3),
+          formatFixed(row.f, 3),
+          formatFixed(row.error_rate, 2),
+          formatFixed(row.precision, 3),
+          formatFixed(row.recall, 3),
+          formatFixed(row.f1, 3)};
 }
 
 std::vector<ScoreSummary> summaries(const std::vector<SequenceScore>& scores) {
@@ -110,6 +103,13 @@ nlohmann::json frameJson(const FrameScore& frame) {
 }
 
 }  // namespace
+
+std::string formatFixed(double value, int decimals) {
+  if (std::isnan(value)) return "-";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
 
 std::string formatScoreTable(const std::vector<SequenceScore>& scores) {
   std::vector<ScoreSummary> rows = summaries(scores);

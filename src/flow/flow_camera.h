@@ -90,7 +90,7 @@ void residualMotion(const cv::Mat& flow_map, const cv::Mat& camera_map, const Fl
 void flowMap(const cv::Mat& flow, cv::Mat* map);
 void cameraMap(const cv::Matx33d& model, cv::Size size, cv::Mat* map);
 
-// The same at the samples of `camera`, into `residuals`.
+// residualMotion() at the samples of `camera`, into `residuals`.
 void residualAtSamples(const FlowCamera& camera, std::vector<float>* residuals);
 
 }  // namespace movseg

@@ -71,6 +71,21 @@ void writeTextAtomic(const std::string& path, const std::string& text) {
   writeBytesAtomic(path, text.data(), text.size());
 }
 
+void makeOutputFolder(const std::string& path) {
+  std::error_code error;
+  std::filesystem::create_directories(path, error);
+  if (error || !std::filesystem::is_directory(path)) {
+    throw std::runtime_error("cannot create output folder '" + path + "'" +
+                             (error ? ": " + error.message() : ""));
+  }
+}
+
+std::string frameFileName(int index) {
+  char name[32];
+  std::snprintf(name, sizeof name, "%05d.png", index);
+  return name;
+}
+
 LineFile::LineFile(std::string path) : path_(std::move(path)) {
   fd_ = ::open((path_ + ".part").c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd_ < 0) throw writeError(path_, errno);

@@ -15,6 +15,14 @@ void writeImageAtomic(const std::string& path, const cv::Mat& image);
 
 void writeTextAtomic(const std::string& path, const std::string& text);
 
+// Creates the folder `path` and its parents. Throws std::runtime_error "cannot create output
+// folder ..." when it cannot (a file in the way, no permission).
+void makeOutputFolder(const std::string& path);
+
+// The name of frame `index`'s picture among a run's outputs (masks, synthetic frames): 00000.png,
+// 00001.png, ..., more digits from 100000 on.
+std::string frameFileName(int index);
+
 // A text file grown line by line under PATH.part and renamed to PATH by close(). It holds whole
 // lines only: a line that cannot be written completely is cut off again and append() throws.
 class LineFile {

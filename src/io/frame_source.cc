@@ -8,6 +8,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "core/text.h"
+
 namespace movseg {
 namespace fs = std::filesystem;
 namespace {
@@ -15,9 +17,7 @@ namespace {
 bool isImageFile(const fs::path& path) {
   static const char* const kExtensions[] = {".png", ".jpg", ".jpeg", ".bmp", ".tif",
                                             ".tiff", ".ppm", ".pgm", ".webp"};
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string ext = lowercase(path.extension().string());
   return std::find(std::begin(kExtensions), std::end(kExtensions), ext) != std::end(kExtensions);
 }
 

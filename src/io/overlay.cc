@@ -2,6 +2,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "classify/classify_debug.h"
 #include "core/frame.h"
 
 namespace movseg {
@@ -19,10 +20,7 @@ cv::Mat drawOverlay(const cv::Mat& frame, const Result& result, const std::strin
     cv::drawContours(canvas, contours, -1, cv::Scalar(0, 0, 255), 2, cv::LINE_AA);
   }
   for (const Feature& f : feature_dots ? result.features : std::vector<Feature>()) {
-    cv::Scalar colour(0, 255, 255);
-    if (f.label == FeatureLabel::kForeground) colour = cv::Scalar(0, 0, 255);
-    if (f.label == FeatureLabel::kBackground) colour = cv::Scalar(255, 128, 0);
-    cv::circle(canvas, f.position, 2, colour, cv::FILLED, cv::LINE_AA);
+    cv::circle(canvas, f.position, 2, labelColour(f.label), cv::FILLED, cv::LINE_AA);
   }
   if (!hud.empty()) {
     const double scale = std::max(0.4, canvas.cols / 1000.0);

@@ -11,6 +11,24 @@
 namespace movseg {
 namespace {
 
+// Eq. (4) at the given points of `cur` only (3x3 patch mean), as the outer layer needs; `prev`
+// and `cur` are 8-bit grey.
+std::vector<float> compensatedDifferenceAt(const cv::Mat& prev, const cv::Mat& cur,
+                                           const cv::Matx33d& model,
+                                           const std::vector<cv::Point2f>& cur_points) {
+  const cv::Matx33d inverse = model.inv();
+  std::vector<float> d(cur_points.size());
+  float a[9], b[9];
+  for (size_t i = 0; i < cur_points.size(); ++i) {
+    samplePatch(cur, cur_points[i], 3, a);
+    samplePatch(prev, applyModel(inverse, cur_points[i]), 3, b);
+    float sum = 0;
+    for (int k = 0; k < 9; ++k) sum += (a[k] - b[k]) * (a[k] - b[k]);
+    d[i] = sum / 9.f;
+  }
+  return d;
+}
+
 // Fewer background matches than this and a 6- or 8-parameter fit is not trusted.
 constexpr int kMinMatches = 8;
 
@@ -121,34 +139,14 @@ cv::Mat warpPrevious(const cv::Mat& prev, const cv::Mat& cur, const cv::Matx33d&
 }
 
 cv::Mat compensatedDifference(const cv::Mat& prev, const cv::Mat& cur, const cv::Matx33d& model) {
-  return differenceToWarped(cur, warpPrevious(prev, cur, model));
-}
-
-cv::Mat differenceToWarped(const cv::Mat& cur, const cv::Mat& warped) {
   cv::Mat diff, squared, d;
-  cv::absdiff(cur, warped, diff);
+  cv::absdiff(cur, warpPrevious(prev, cur, model), diff);
   diff.convertTo(diff, CV_32F);
   cv::multiply(diff, diff, squared);
   if (cur.channels() == 1) {
     d = squared;
   } else {
     cv::transform(squared, d, cv::Matx13f(1.f / 3, 1.f / 3, 1.f / 3));
-  }
-  return d;
-}
-
-std::vector<float> compensatedDifferenceAt(const cv::Mat& prev, const cv::Mat& cur,
-                                           const cv::Matx33d& model,
-                                           const std::vector<cv::Point2f>& cur_points) {
-  const cv::Matx33d inverse = model.inv();
-  std::vector<float> d(cur_points.size());
-  float a[9], b[9];
-  for (size_t i = 0; i < cur_points.size(); ++i) {
-    samplePatch(cur, cur_points[i], 3, a);
-    samplePatch(prev, applyModel(inverse, cur_points[i]), 3, b);
-    float sum = 0;
-    for (int k = 0; k < 9; ++k) sum += (a[k] - b[k]) * (a[k] - b[k]);
-    d[i] = sum / 9.f;
   }
   return d;
 }

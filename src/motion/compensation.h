@@ -39,13 +39,4 @@ cv::Mat warpPrevious(const cv::Mat& prev, const cv::Mat& cur, const cv::Matx33d&
 // Returns CV_32F of cur's size.
 cv::Mat compensatedDifference(const cv::Mat& prev, const cv::Mat& cur, const cv::Matx33d& model);
 
-// The same when the caller has warpPrevious()'s result `warped` already.
-cv::Mat differenceToWarped(const cv::Mat& cur, const cv::Mat& warped);
-
-// Eq. (4) at the given points of `cur` only (3x3 patch mean), as the outer layer needs; `prev`
-// and `cur` are 8-bit grey.
-std::vector<float> compensatedDifferenceAt(const cv::Mat& prev, const cv::Mat& cur,
-                                           const cv::Matx33d& model,
-                                           const std::vector<cv::Point2f>& cur_points);
-
 }  // namespace movseg

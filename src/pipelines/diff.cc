@@ -1,11 +1,8 @@
 // `diff`: the compensated frame difference of §3.1 thresholded by eq. (3) — the paper's pipeline
 // cut off before §3.2 (no GMM refinement, no geodesic cut). A baseline.
 #include "classify/classify.h"
-#include "classify/scene_cut.h"
 #include "core/timing.h"
 #include "motion/camera_tracker.h"
-#include "motion/model.h"
-#include "motion/motion_debug.h"
 #include "pipelines/pipeline.h"
 #include "pipelines/tracked.h"
 
@@ -31,10 +28,7 @@ class DiffPipeline : public Pipeline {
     const PreparedFrame& cur = step.current->image;
     if (step.previous == nullptr) return cv::Mat::zeros(cur.seg_bgr.size(), CV_8U);
     const Clock::time_point start = Clock::now();
-    const cv::Matx33d model = rescaleModel(step.model, cur.seg_scale);
-    const cv::Mat d = compensatedDifference(step.previous->image.seg_smooth, cur.seg_smooth, model);
-    debug.put("difference", [&] { return drawDifference(d); });
-    diag.scene_cut = isSceneCut(d, model);
+    const cv::Mat d = compensatedDifferenceOf(step, debug, &diag);
     diag.lambda = chooseLambda(d, step.staticPoints(cur.seg_scale), params_);
     diag.classify_ms = millisecondsSince(start);
     return d > diag.lambda;

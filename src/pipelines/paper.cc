@@ -4,13 +4,11 @@
 
 #include "classify/classify.h"
 #include "classify/classify_debug.h"
-#include "classify/scene_cut.h"
 #include "core/timing.h"
 #include "cut/cut_debug.h"
 #include "cut/graph_cut.h"
 #include "cut/grid_max_flow.h"
 #include "motion/camera_tracker.h"
-#include "motion/model.h"
 #include "motion/motion_debug.h"
 #include "pipelines/pipeline.h"
 #include "pipelines/tracked.h"
@@ -90,15 +88,10 @@ class PaperPipeline : public Pipeline {
  private:
   // §3.2 and §3.3 at the segmentation scale.
   cv::Mat classifyAndCut(const CameraTracker::Step& step, const DebugSink& debug, Result* result) {
-    const PreparedFrame& prev = step.previous->image;
     const PreparedFrame& cur = step.current->image;
     Diagnostics& diag = result->diagnostics;
     Clock::time_point start = Clock::now();
-    const cv::Matx33d model = rescaleModel(step.model, cur.seg_scale);
-    // eq. (4)
-    const cv::Mat difference = compensatedDifference(prev.seg_smooth, cur.seg_smooth, model);
-    debug.put("difference", [&] { return drawDifference(difference); });
-    diag.scene_cut = isSceneCut(difference, model);
+    const cv::Mat difference = compensatedDifferenceOf(step, debug, &diag);  // eq. (4)
     const std::vector<cv::Point2f> points = featuresAtSegmentationScale(*step.current);
     const FeatureClasses classes = classifyFeatures(
         difference, cur.seg_bgr, points, step.staticPoints(cur.seg_scale), params_);

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 
+#include "classify/scene_cut.h"
+#include "motion/compensation.h"
 #include "motion/model.h"
+#include "motion/motion_debug.h"
 
 namespace movseg {
 
@@ -24,6 +27,17 @@ void describeMotion(const CameraTracker::Step& step, Diagnostics* diag) {
   diag->motion_fallback = motion.fallback;
   diag->prepare_ms = step.prepare_ms;
   diag->motion_ms = step.motion_ms;
+}
+
+cv::Mat compensatedDifferenceOf(const CameraTracker::Step& step, const DebugSink& debug,
+                                Diagnostics* diag) {
+  const PreparedFrame& current = step.current->image;
+  const cv::Matx33d model = rescaleModel(step.model, current.seg_scale);
+  const cv::Mat difference =
+      compensatedDifference(step.previous->image.seg_smooth, current.seg_smooth, model);
+  debug.put("difference", [&] { return drawDifference(difference); });
+  diag->scene_cut = isSceneCut(difference, model);
+  return difference;
 }
 
 }  // namespace movseg

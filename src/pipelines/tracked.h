@@ -19,4 +19,10 @@ void analyseTracked(CameraTracker* tracker, const cv::Mat& bgr, Analysis* analys
 // and the prepare / motion times of `step`.
 void describeMotion(const CameraTracker::Step& step, Diagnostics* diag);
 
+// Eq. (4) at the segmentation scale: the step's previous frame warped onto its current one by
+// the camera, their difference d (debug picture `difference`), and whether the pair is a scene
+// cut (diag->scene_cut). `step` has a previous frame.
+cv::Mat compensatedDifferenceOf(const CameraTracker::Step& step, const DebugSink& debug,
+                                Diagnostics* diag);
+
 }  // namespace movseg

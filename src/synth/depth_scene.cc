@@ -298,6 +298,29 @@ std::vector<Layer> farToNear(const DepthScene& scene) {
   return layers;
 }
 
+// The sprite's surface at frame t, without the part below the ground.
+PlanarSurface spriteSurface(const Sprite& sprite, int t) {
+  const SynthObject& object = sprite.object;
+  const double c = std::cos(object.angle[t]), s = std::sin(object.angle[t]);
+  const double k = sprite.metres_per_pixel;
+  // Texture pixel (u, v) is at centre[t] + rotation * ((u, v) - half) in the reference view, as
+  // drawObject() draws it.
+  const double half = (object.texture.cols - 1) / 2.0;
+  const cv::Point2d pixel_zero =
+      object.centre[t] - cv::Point2d((c - s) * half, (s + c) * half) - sprite.centre;
+  const cv::Vec3d origin = sprite.anchor + k * cv::Vec3d(pixel_zero.x, pixel_zero.y, 0);
+  PlanarSurface surface;
+  surface.texture = object.texture;
+  surface.to_world =
+      cv::Matx33d(k * c, -k * s, origin[0], k * s, k * c, origin[1], 0, 0, origin[2]);
+  for (const cv::Point2d& p : object.outline)
+    surface.outline.push_back(p + cv::Point2d(half, half));
+  // World y <= 0: the ground hides the rest.
+  const cv::Vec3d above_ground(-k * s, -k * c, -origin[1]);
+  surface.outline = clipPolygon(surface.outline, above_ground);
+  return surface;
+}
+
 }  // namespace
 
 DepthScene makeDepthScene(const SynthOptions& options) {
@@ -330,28 +353,6 @@ DepthScene makeDepthScene(const SynthOptions& options) {
   scene.ground = rectangleSurface(std::move(ground), cv::Vec3d(seen.x_low, 0, far_z),
                                   cv::Vec3d(1, 0, 0), width, cv::Vec3d(0, 0, -1), length);
   return scene;
-}
-
-PlanarSurface spriteSurface(const Sprite& sprite, int t) {
-  const SynthObject& object = sprite.object;
-  const double c = std::cos(object.angle[t]), s = std::sin(object.angle[t]);
-  const double k = sprite.metres_per_pixel;
-  // Texture pixel (u, v) is at centre[t] + rotation * ((u, v) - half) in the reference view, as
-  // drawObject() draws it.
-  const double half = (object.texture.cols - 1) / 2.0;
-  const cv::Point2d pixel_zero =
-      object.centre[t] - cv::Point2d((c - s) * half, (s + c) * half) - sprite.centre;
-  const cv::Vec3d origin = sprite.anchor + k * cv::Vec3d(pixel_zero.x, pixel_zero.y, 0);
-  PlanarSurface surface;
-  surface.texture = object.texture;
-  surface.to_world =
-      cv::Matx33d(k * c, -k * s, origin[0], k * s, k * c, origin[1], 0, 0, origin[2]);
-  for (const cv::Point2d& p : object.outline)
-    surface.outline.push_back(p + cv::Point2d(half, half));
-  // World y <= 0: the ground hides the rest.
-  const cv::Vec3d above_ground(-k * s, -k * c, -origin[1]);
-  surface.outline = clipPolygon(surface.outline, above_ground);
-  return surface;
 }
 
 void renderDepthFrame(const DepthScene& scene, int t, bool background, cv::Mat& frame,

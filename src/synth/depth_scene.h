@@ -49,9 +49,6 @@ struct DepthScene {
 // random stream of options.seed.
 DepthScene makeDepthScene(const SynthOptions& options);
 
-// The sprite's surface at frame t, without the part below the ground.
-PlanarSurface spriteSurface(const Sprite& sprite, int t);
-
 // Frame t before gain and noise, and its mask: 255 exactly on the visible sprite pixels.
 // background = false paints every static surface black (still hiding what is behind it).
 void renderDepthFrame(const DepthScene& scene, int t, bool background, cv::Mat& frame,

@@ -116,21 +116,6 @@ void expose(cv::Mat& frame, double gain, double noise_sigma, cv::RNG rng) {
   light.convertTo(frame, CV_8U);
 }
 
-void makeFolder(const std::string& path) {
-  std::error_code error;
-  std::filesystem::create_directories(path, error);
-  if (error || !std::filesystem::is_directory(path)) {
-    throw std::runtime_error("cannot create output folder '" + path + "'" +
-                             (error ? ": " + error.message() : ""));
-  }
-}
-
-std::string imageName(int t) {
-  char name[32];
-  std::snprintf(name, sizeof(name), "%05d.png", t);
-  return name;
-}
-
 nlohmann::json rowsJson(const cv::Matx33d& matrix) {
   nlohmann::json rows = nlohmann::json::array();
   for (int r = 0; r < 3; ++r)
@@ -230,13 +215,13 @@ SynthFrame SynthSequence::frame(int t) const {
 void writeSynthSequence(const std::string& dir, const SynthOptions& options) {
   const SynthSequence sequence(options);
   const std::string frames_dir = dir + "/frames", masks_dir = dir + "/masks";
-  makeFolder(frames_dir);
-  makeFolder(masks_dir);
+  makeOutputFolder(frames_dir);
+  makeOutputFolder(masks_dir);
   std::string cameras, poses;
   for (int t = 0; t < sequence.size(); ++t) {
     const SynthFrame frame = sequence.frame(t);
-    writeImageAtomic(frames_dir + "/" + imageName(t), frame.frame);
-    writeImageAtomic(masks_dir + "/" + imageName(t), frame.mask);
+    writeImageAtomic(frames_dir + "/" + frameFileName(t), frame.frame);
+    writeImageAtomic(masks_dir + "/" + frameFileName(t), frame.mask);
     if (t > 0) cameras += cameraLine(t, frame.camera) + "\n";
     if (frame.pose) poses += poseLine(t, *frame.pose) + "\n";
   }

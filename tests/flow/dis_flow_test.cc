@@ -44,10 +44,6 @@ FlowError flowError(const cv::Mat& flow, const cv::Mat& truth, const cv::Rect& r
   return {cv::mean(distance)[0], over_half / region.area()};
 }
 
-FlowError flowError(const cv::Mat& flow, const cv::Mat& truth) {
-  return flowError(flow, truth, cv::Rect({0, 0}, flow.size()));
-}
-
 // The flow of `warp` at every pixel: warp(p) - p.
 cv::Mat warpFlow(const cv::Matx23d& warp, cv::Size size) {
   cv::Mat flow(size, CV_32FC2);

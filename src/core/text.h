@@ -1,0 +1,17 @@
+// Small text helpers shared by the parameter parser and the file readers and writers.
+#pragma once
+
+#include <algorithm>
+#include <cctype>
+#include <string>
+
+namespace movseg {
+
+// `text` in lower case, byte by byte (ASCII: names, extensions, keywords).
+inline std::string lowercase(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+}  // namespace movseg
