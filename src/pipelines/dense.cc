@@ -15,6 +15,7 @@
 #include "core/timing.h"
 #include "cut/evidence_cut.h"
 #include "evidence/colour_model.h"
+#include "evidence/evidence_debug.h"
 #include "evidence/motion_evidence.h"
 #include "flow/dense_flow.h"
 #include "flow/flow_camera.h"
@@ -177,75 +178,25 @@ class DensePipeline : public Pipeline {
     diag.motion_fallback = !a.first_frame && a.flow.empty();
     if (a.first_frame || a.flow.empty()) return forget(a.bgr.size());
     Clock::time_point start = Clock::now();
-    cv::Mat& carried = carried_;
-    cv::Mat& evidence = evidence_;
-    photometric_.followFlow(previous_.grey, mask_, a.flow_map, &carried);
-    FlowCamera& camera = camera_;
-    camera_fitter_.fit(a.flow, a.samples, carried, rng_, last_model_ ? &*last_model_ : nullptr,
-                       &camera);
-    if (!camera.fallback) last_model_ = camera.model;
-    depth_.settle(&camera);
-    cameraMap(camera.model, a.grey.size(), &camera_map_);
-    residualMotion(a.flow_map, camera_map_, camera, &residual_);
-    // The fit maps current to previous working pixels; eq. (4) warps previous to current.
-    to_current_ = camera.model.inv();
-    has_pair_ = true;
+    measureCamera(a);
     diag.motion_ms += millisecondsSince(start);
-    describe(camera, a.scale, &diag);
+    describe(camera_, a.scale, &diag);
 
     start = Clock::now();
     diag.scene_cut = isSceneCutUnderCamera(a.bgr, previous_.bgr, camera_map_);
     if (diag.scene_cut) return forget(a.bgr.size());
-    photometric_.confirm(a.grey, camera_map_, params_, &confirmation_);
-    sample_residuals_.reserve(a.samples.size());  // at most one per sample: they do not grow
-    unconfirmed_.reserve(a.samples.size());
-    const float scale = residualScale(
-        unconfirmedResiduals(camera, confirmation_, &sample_residuals_, &unconfirmed_), params_);
-    diag.residual_scale = scale;
-    motionEvidence(residual_, scale, params_, &evidence);
-    confirmMotion(confirmation_, &evidence);
-    const bool uncovers = !carried.empty() && params_.uncovered;
-    if (uncovers) dropUncovered(carried, mask_, camera_map_, &evidence);
-    // White: background the last frame's mover uncovered (mask_ is still that frame's here).
-    debug.put("uncovered", [&] {
-      cv::Mat picture = cv::Mat::zeros(a.grey.size(), CV_8U);
-      if (uncovers) uncoveredPixels(carried, mask_, camera_map_, &picture);
-      return picture;
-    });
-    // The pair's evidence is kept for the colour model: memory goes into an image of its own.
-    const cv::Mat* remembered = &evidence;
-    if (!carried.empty()) {
-      addMemory(carried, params_, evidence, &with_memory_);
-      remembered = &with_memory_;
-    }
-    cv::Mat& unary = unary_;
-    colour_.addEvidence(a.bgr, *remembered, &unary);
-    addBias(params_.foreground_bias, &unary);
-    colour_.update(a.bgr, *remembered, evidence);
+    diag.residual_scale = pairEvidence(a, debug);
+    unaryOf(a);
     diag.classify_ms = millisecondsSince(start);
 
     start = Clock::now();
-    cut_.cut(unary, a.contrast, &diag.cut_nodes, &mask_);
+    cut_.cut(unary_, a.contrast, &diag.cut_nodes, &mask_);
     const cv::Mat mask = edge_snap_.snap(mask_, a.grey, params_.edge_snap, a.input_grey);
     diag.cut_ms = millisecondsSince(start);
-    debug.put("residual", [&] {  // mid-grey: as large as the background's residual in this pair
-      cv::Mat picture;
-      residual_.convertTo(picture, CV_8U, 128.0 / scale);
-      return picture;
-    });
-    debug.put("carried", [&] {  // the previous mask brought here by the flow: the memory
-      return carried.empty() ? cv::Mat(cv::Mat::zeros(a.grey.size(), CV_8U)) : carried.clone();
-    });
-    debug.put("confirmation", [&] {
-      cv::Mat picture;
-      confirmation_.convertTo(picture, CV_8U, 255);
-      return picture;
-    });
-    debug.put("unary", [&] {  // mid-grey: undecided; each log-odds unit 25 levels, white moving
-      cv::Mat picture;
-      unary.convertTo(picture, CV_8U, 25.0, 128.0);
-      return picture;
-    });
+    debug.put("residual", [&] { return drawResidual(residual_, diag.residual_scale); });
+    debug.put("carried", [&] { return drawCarried(carried_, a.grey.size()); });
+    debug.put("confirmation", [&] { return drawConfirmation(confirmation_); });
+    debug.put("unary", [&] { return drawLogOdds(unary_); });
     debug.put("edges", [&] {  // at the size of the mask returned
       cv::Mat cut;
       upscaledMask(mask_, mask.size(), &cut);
@@ -272,6 +223,57 @@ class DensePipeline : public Pipeline {
     last_model_.reset();
     mask_.release();
     return cv::Mat::zeros(size, CV_8U);
+  }
+
+  // The previous mask carried by the flow (carried_), the camera fitted to the flow of the
+  // background (camera_, its map camera_map_) and the residual motion (residual_).
+  void measureCamera(const DenseAnalysis& a) {
+    photometric_.followFlow(previous_.grey, mask_, a.flow_map, &carried_);
+    camera_fitter_.fit(a.flow, a.samples, carried_, rng_, last_model_ ? &*last_model_ : nullptr,
+                       &camera_);
+    if (!camera_.fallback) last_model_ = camera_.model;
+    depth_.settle(&camera_);
+    cameraMap(camera_.model, a.grey.size(), &camera_map_);
+    residualMotion(a.flow_map, camera_map_, camera_, &residual_);
+    // The fit maps current to previous working pixels; eq. (4) warps previous to current.
+    to_current_ = camera_.model.inv();
+    has_pair_ = true;
+  }
+
+  // The pair's own evidence (evidence_): the residual in units of the background's (the scale,
+  // returned), confirmed by the photometric check, none where the last mover uncovered the
+  // background.
+  float pairEvidence(const DenseAnalysis& a, const DebugSink& debug) {
+    photometric_.confirm(a.grey, camera_map_, params_, &confirmation_);
+    sample_residuals_.reserve(a.samples.size());  // at most one per sample: they do not grow
+    unconfirmed_.reserve(a.samples.size());
+    const float scale = residualScale(
+        unconfirmedResiduals(camera_, confirmation_, &sample_residuals_, &unconfirmed_), params_);
+    motionEvidence(residual_, scale, params_, &evidence_);
+    confirmMotion(confirmation_, &evidence_);
+    const bool uncovers = !carried_.empty() && params_.uncovered;
+    if (uncovers) dropUncovered(carried_, mask_, camera_map_, &evidence_);
+    // White: background the last frame's mover uncovered (mask_ is still that frame's here).
+    debug.put("uncovered", [&] {
+      cv::Mat picture = cv::Mat::zeros(a.grey.size(), CV_8U);
+      if (uncovers) uncoveredPixels(carried_, mask_, camera_map_, &picture);
+      return picture;
+    });
+    return scale;
+  }
+
+  // The cut's unary (unary_): the pair's evidence, memory, colour and the prior; the colour
+  // models then learn from this frame.
+  void unaryOf(const DenseAnalysis& a) {
+    // The pair's evidence is kept for the colour model: memory goes into an image of its own.
+    const cv::Mat* remembered = &evidence_;
+    if (!carried_.empty()) {
+      addMemory(carried_, params_, evidence_, &with_memory_);
+      remembered = &with_memory_;
+    }
+    colour_.addEvidence(a.bgr, *remembered, &unary_);
+    addBias(params_.foreground_bias, &unary_);
+    colour_.update(a.bgr, *remembered, evidence_);
   }
 
   static void describe(const FlowCamera& camera, double working_scale, Diagnostics* diag) {
