@@ -117,9 +117,9 @@ std::string tableRow(const ScoreSummary& row, const std::string& method, double 
   std::string html = "<tr" + (css_class.empty() ? "" : " class=\"" + css_class + "\"") + "><td>" +
                      escaped(row.name) + "</td><td class=\"text\">" + escaped(method) + "</td>";
   for (const std::string& cell :
-       {std::to_string(row.frames), formatFixed(row.j, 3), formatFixed(row.j_recall, 3), formatFixed(row.f, 3),
-        formatFixed(row.error_rate, 2), formatFixed(row.precision, 3), formatFixed(row.recall, 3),
-        formatFixed(row.f1, 3)}) {
+       {std::to_string(row.frames), formatFixed(row.j, 3), formatFixed(row.j_recall, 3),
+        formatFixed(row.f, 3), formatFixed(row.error_rate, 2), formatFixed(row.precision, 3),
+        formatFixed(row.recall, 3), formatFixed(row.f1, 3)}) {
     html += "<td>" + cell + "</td>";
   }
   if (timed) html += "<td>" + formatFixed(ms_per_frame, 2) + "</td>";
