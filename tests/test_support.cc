@@ -194,4 +194,31 @@ Params withMethod(Method method) {
   return params;
 }
 
+std::string otherParamValue(const FieldInfo& field, const Params& params) {
+  const FieldValue value = paramValue(params, field.name);
+  switch (field.type) {
+    case FieldType::kBool:
+      return std::get<bool>(value) ? "false" : "true";
+    case FieldType::kChoice: {
+      const std::vector<std::string>& names = field.choices;
+      const auto at = std::find(names.begin(), names.end(), std::get<std::string>(value));
+      return names[static_cast<size_t>(at - names.begin() + 1) % names.size()];
+    }
+    case FieldType::kInt: {
+      const int v = std::get<int>(value), step = std::max(field.step, 1);
+      return std::to_string(v + step <= field.max ? v + step : v - step);
+    }
+    case FieldType::kUnsigned:
+      return std::to_string(std::get<std::uint64_t>(value) + 1);
+    case FieldType::kReal: {
+      const double v = std::get<double>(value);
+      return toText(v < field.max ? v + (field.max - v) / 8 : v - (v - field.min) / 8);
+    }
+    case FieldType::kMatrix:
+      break;
+  }
+  ADD_FAILURE() << field.name << ": no other value";
+  return "";
+}
+
 }  // namespace movseg::test

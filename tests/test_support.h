@@ -84,6 +84,7 @@ std::vector<std::string> davisFrames(const std::string& name, size_t count);
 
 #include <opencv2/core.hpp>
 
+#include "movseg/fields.h"
 #include "movseg/params.h"
 
 namespace movseg::test {
@@ -99,5 +100,8 @@ double cornerError(const cv::Matx33d& estimated, const cv::Matx33d& truth, cv::S
 
 // The default parameters with `method` chosen: for tests that read one pipeline's stages.
 Params withMethod(Method method);
+
+// A valid value of `field` (movseg/fields.h) other than its value in `params`, as text.
+std::string otherParamValue(const FieldInfo& field, const Params& params);
 
 }  // namespace movseg::test

@@ -31,4 +31,8 @@ struct Params {
   void check() const;
 };
 
+// Every field equal.
+bool operator==(const Params& a, const Params& b);
+inline bool operator!=(const Params& a, const Params& b) { return !(a == b); }
+
 }  // namespace movseg

@@ -187,6 +187,14 @@ void setParam(Params* params, const std::string& name, const std::string& text) 
 #undef MOVSEG_PARAM
 }
 
+bool operator==(const Params& a, const Params& b) {
+  return true
+#define MOVSEG_PARAM(type, name, default_value, min, max, step, unit, doc) && a.name == b.name
+#include "movseg/params.def"
+#undef MOVSEG_PARAM
+      ;
+}
+
 void Params::check() const {
 #define MOVSEG_PARAM(type, name, default_value, min, max, step, unit, doc) \
   checkField(paramField(#name), name);

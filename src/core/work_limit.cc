@@ -85,15 +85,6 @@ void limitFlowCamera(cv::Size seg, Params* p) {
       std::min(p->ransac_iterations, std::max(1, static_cast<int>(kRansacWork / samples)));
 }
 
-bool sameWork(const Params& a, const Params& b) {
-  return a.alignment_width == b.alignment_width && a.max_corners == b.max_corners &&
-         a.edge_cell == b.edge_cell &&
-         a.max_tracked_features == b.max_tracked_features &&
-         a.ransac_iterations == b.ransac_iterations &&
-         a.segmentation_width == b.segmentation_width && a.difference_blur == b.difference_blur &&
-         a.cut_band == b.cut_band && a.flow_sample_step == b.flow_sample_step;
-}
-
 }  // namespace
 
 WorkLimit withinWorkLimit(const Params& params, cv::Size frame) {
@@ -116,7 +107,7 @@ WorkLimit withinWorkLimit(const Params& params, cv::Size frame) {
     case Method::kMog2: break;
     case Method::kDense: limitFlowCamera(seg, &p); break;
   }
-  limit.lowered = !sameWork(limit.params, params);
+  limit.lowered = limit.params != params;
   return limit;
 }
 

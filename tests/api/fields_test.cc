@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "movseg/fields.h"
+#include "test_support.h"
 
 namespace movseg {
 namespace {
@@ -64,6 +65,17 @@ std::vector<double> outsideRange(const FieldInfo& field) {
 }
 
 TEST(Fields, DefaultsAreValid) { EXPECT_NO_THROW(Params().check()); }
+
+// Params' equality is generated from params.def: a field it forgot would compare equal.
+TEST(Fields, ParamsDifferWhereverOneFieldDoes) {
+  const Params defaults;
+  EXPECT_TRUE(defaults == Params());
+  for (const FieldInfo& field : paramFields()) {
+    Params other;
+    setParam(&other, field.name, test::otherParamValue(field, defaults));
+    EXPECT_TRUE(other != defaults) << field.name;
+  }
+}
 
 TEST(Fields, CheckRejectsEveryFieldOutsideItsRangeByName) {
   int cases = 0;

@@ -59,34 +59,6 @@ TEST(Options, BadCliOptionsExitWithOneLine) {
   EXPECT_FALSE(std::filesystem::exists(dir / "d")) << "demo wrote before checking its options";
 }
 
-// A valid value of `field` other than its default, as text.
-std::string otherValue(const FieldInfo& field, const Params& defaults) {
-  const FieldValue value = paramValue(defaults, field.name);
-  switch (field.type) {
-    case FieldType::kBool:
-      return std::get<bool>(value) ? "false" : "true";
-    case FieldType::kChoice: {
-      const std::vector<std::string>& names = field.choices;
-      const auto at = std::find(names.begin(), names.end(), std::get<std::string>(value));
-      return names[static_cast<size_t>(at - names.begin() + 1) % names.size()];
-    }
-    case FieldType::kInt: {
-      const int v = std::get<int>(value), step = std::max(field.step, 1);
-      return std::to_string(v + step <= field.max ? v + step : v - step);
-    }
-    case FieldType::kUnsigned:
-      return std::to_string(std::get<std::uint64_t>(value) + 1);
-    case FieldType::kReal: {
-      const double v = std::get<double>(value);
-      return toText(v < field.max ? v + (field.max - v) / 8 : v - (v - field.min) / 8);
-    }
-    case FieldType::kMatrix:
-      break;
-  }
-  ADD_FAILURE() << field.name << ": no other value";
-  return "";
-}
-
 // Every field of params.def can be set from the command line, by --set and by its own option,
 // to a value other than its default, and the run uses it (its manifest records the settings).
 TEST(Options, EveryParameterIsSetByNameOrByItsOption) {
@@ -96,7 +68,7 @@ TEST(Options, EveryParameterIsSetByNameOrByItsOption) {
   const Params defaults;
   Params expected;
   for (const FieldInfo& field : paramFields()) {
-    const std::string value = otherValue(field, defaults);
+    const std::string value = test::otherParamValue(field, defaults);
     setParam(&expected, field.name, value);
     ASSERT_NE(toText(paramValue(expected, field.name)), toText(paramValue(defaults, field.name)))
         << field.name;
@@ -122,7 +94,7 @@ TEST(Options, EveryParameterIsSetByNameOrByItsOption) {
   std::string bench_options;
   for (const FieldInfo& field : paramFields()) {
     if (field.name == "method") continue;
-    bench_options += " --set " + field.name + "=" + otherValue(field, defaults);
+    bench_options += " --set " + field.name + "=" + test::otherParamValue(field, defaults);
   }
   const test::CommandResult demo =
       test::runCli("demo -o " + (dir / "demo") + " --frames 3" + by_option);
