@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include <opencv2/core/hal/intrin.hpp>
 #include <opencv2/imgproc.hpp>
@@ -9,6 +10,11 @@
 #include "core/quantile.h"
 
 namespace movseg {
+
+void LevelMap::table(uchar levels[256]) const {
+  for (int v = 0; v < 256; ++v) levels[v] = cv::saturate_cast<uchar>(gain * v + offset);
+}
+
 namespace {
 
 // A residual scale below this (pixels) is below what the flow resolves.
@@ -93,6 +99,33 @@ void confirmationRow(const uchar* flow, const uchar* camera, float margin, int w
   }
 }
 
+// fitLevels reads every fourth row: a quarter of the pixels, as many as the scene cut's, each
+// row in order.
+constexpr int kLevelRowStep = 4;
+
+// The median of |grey - map(previous)| over the rows fitLevels reads.
+int medianLevelError(const cv::Mat& grey, const cv::Mat& previous, const LevelMap& map) {
+  uchar table[256];
+  map.table(table);
+  LevelHistogram histogram{};
+  for (int y = 0; y < grey.rows; y += kLevelRowStep) {
+    const uchar* to = grey.ptr<uchar>(y);
+    const uchar* from = previous.ptr<uchar>(y);
+    for (int x = 0; x < grey.cols; ++x) ++histogram[std::abs(to[x] - table[from[x]])];
+  }
+  return median(histogram);
+}
+
+// *image's levels through `map`.
+void mapLevels(const LevelMap& map, cv::Mat* image) {
+  uchar table[256];
+  map.table(table);
+  for (int y = 0; y < image->rows; ++y) {
+    uchar* row = image->ptr<uchar>(y);
+    for (int x = 0; x < image->cols; ++x) row[x] = table[row[x]];
+  }
+}
+
 }  // namespace
 
 void PhotometricCheck::followFlow(const cv::Mat& previous_grey, const cv::Mat& previous_mask,
@@ -107,9 +140,45 @@ void PhotometricCheck::followFlow(const cv::Mat& previous_grey, const cv::Mat& p
   BilinearRemap::remapBoth(previous_, previous_mask_, flow_map, &by_flow_, carried);
 }
 
+LevelMap PhotometricCheck::fitLevels(const cv::Mat& grey) const {
+  // Integer sums, exact (a row's in 32 bits, enough for rows under 66,000 pixels, in a loop GCC
+  // vectorises); a pixel where either frame clips (0 or 255) counts 0 times.
+  std::int64_t n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (int y = 0; y < grey.rows; y += kLevelRowStep) {
+    const uchar* to = grey.ptr<uchar>(y);
+    const uchar* from = by_flow_.ptr<uchar>(y);
+    std::uint32_t row_n = 0, row_x = 0, row_y = 0, row_xx = 0, row_xy = 0;
+    for (int x = 0; x < grey.cols; ++x) {
+      const std::uint32_t f = from[x], t = to[x];
+      const std::uint32_t kept = (f != 0) & (f != 255) & (t != 0) & (t != 255);
+      const std::uint32_t kf = kept * f;
+      row_n += kept, row_x += kf, row_y += kept * t, row_xx += kf * f, row_xy += kf * t;
+    }
+    n += row_n, sx += row_x, sy += row_y, sxx += row_xx, sxy += row_xy;
+  }
+  // n^2 times the variance of the previous levels: at least a level's spread to fit a gain.
+  const double spread = static_cast<double>(n * sxx - sx * sx);
+  if (n == 0 || spread <= static_cast<double>(n) * static_cast<double>(n)) return {};
+  LevelMap fitted;
+  fitted.gain = static_cast<double>(n * sxy - sx * sy) / spread;
+  // Light that changes by more than twice between two frames is no change of light: the fit
+  // of two unrelated scenes (a cut) has a gain near their correlation, near 0.
+  if (fitted.gain < 0.5 || fitted.gain > 2) return {};
+  fitted.offset = (static_cast<double>(sy) - fitted.gain * static_cast<double>(sx)) /
+                  static_cast<double>(n);
+  const int before = medianLevelError(grey, by_flow_, LevelMap());
+  const int after = medianLevelError(grey, by_flow_, fitted);
+  return after < before && 2 * after <= before ? fitted : LevelMap();
+}
+
 void PhotometricCheck::confirm(const cv::Mat& grey, const cv::Mat& camera_map,
-                               const Params& params, cv::Mat* confirmation) {
+                               const LevelMap& levels, const Params& params,
+                               cv::Mat* confirmation) {
   previous_.remap(camera_map, &by_camera_);
+  if (!levels.identity()) {
+    mapLevels(levels, &by_flow_);
+    mapLevels(levels, &by_camera_);
+  }
   patchError(grey, &by_flow_, &patch_mean_, &flow_error_);
   patchError(grey, &by_camera_, &patch_mean_, &camera_error_);
   // One grey level at least: an 8-bit difference cannot resolve less.

@@ -63,11 +63,14 @@ struct Remember {
 };
 
 // A scene cut (classify/scene_cut.h) judged on every other pixel of every other row: eq. (4)'s d
-// between the frame and the previous one at the pixel nearest to where the camera puts it. A
-// median over a quarter of the pixels decides as well as over all; warping the whole frame for
-// it would cost more than the rest of the pair's evidence.
+// between the frame and the previous one at the pixel nearest to where the camera puts it, its
+// levels mapped by the pair's change of light (a brighter exposure is the same scene). A median
+// over a quarter of the pixels decides as well as over all; warping the whole frame for it would
+// cost more than the rest of the pair's evidence.
 bool isSceneCutUnderCamera(const cv::Mat& bgr, const cv::Mat& previous_bgr,
-                           const cv::Mat& camera_map) {
+                           const cv::Mat& camera_map, const LevelMap& levels) {
+  uchar table[256];
+  levels.table(table);
   long samples = 0, covered = 0, differing = 0;
   for (int y = 0; y < bgr.rows; y += 2) {
     const auto* at = camera_map.ptr<cv::Vec2f>(y);
@@ -75,7 +78,9 @@ bool isSceneCutUnderCamera(const cv::Mat& bgr, const cv::Mat& previous_bgr,
     for (int x = 0; x < bgr.cols; x += 2, ++samples) {
       const cv::Point p(cvRound(at[x][0]), cvRound(at[x][1]));
       if (p.x < 0 || p.y < 0 || p.x >= bgr.cols || p.y >= bgr.rows) continue;
-      const cv::Vec3i step = cv::Vec3i(colour[x]) - cv::Vec3i(previous_bgr.at<cv::Vec3b>(p));
+      const cv::Vec3b before = previous_bgr.at<cv::Vec3b>(p);
+      const cv::Vec3i step =
+          cv::Vec3i(colour[x]) - cv::Vec3i(table[before[0]], table[before[1]], table[before[2]]);
       ++covered;
       differing += static_cast<float>(step.dot(step)) / 3.f > kSceneCutMedianDifference;
     }
@@ -183,7 +188,8 @@ class DensePipeline : public Pipeline {
     describe(camera_, a.scale, &diag);
 
     start = Clock::now();
-    diag.scene_cut = isSceneCutUnderCamera(a.bgr, previous_.bgr, camera_map_);
+    levels_ = photometric_.fitLevels(a.grey);
+    diag.scene_cut = isSceneCutUnderCamera(a.bgr, previous_.bgr, camera_map_, levels_);
     if (diag.scene_cut) return forget(a.bgr.size());
     diag.residual_scale = pairEvidence(a, debug);
     unaryOf(a);
@@ -244,7 +250,7 @@ class DensePipeline : public Pipeline {
   // returned), confirmed by the photometric check, none where the last mover uncovered the
   // background.
   float pairEvidence(const DenseAnalysis& a, const DebugSink& debug) {
-    photometric_.confirm(a.grey, camera_map_, params_, &confirmation_);
+    photometric_.confirm(a.grey, camera_map_, levels_, params_, &confirmation_);
     sample_residuals_.reserve(a.samples.size());  // at most one per sample: they do not grow
     unconfirmed_.reserve(a.samples.size());
     const float scale = residualScale(
@@ -300,6 +306,7 @@ class DensePipeline : public Pipeline {
   cv::Mat with_memory_;  // the pair's evidence (evidence_) with the carried mask's added
   cv::Mat camera_map_;
   PhotometricCheck photometric_;
+  LevelMap levels_;  // the pair's change of light
   EvidenceCut cut_;
   EdgeSnap edge_snap_;
   PersistentDepth depth_;

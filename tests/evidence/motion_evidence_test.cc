@@ -27,7 +27,7 @@ cv::Mat confirmation(const cv::Mat& grey, const cv::Mat& previous, const cv::Mat
   PhotometricCheck check;
   cv::Mat carried, confirmed;
   check.followFlow(previous, cv::Mat(), flow_map, &carried);
-  check.confirm(grey, camera_map, params, &confirmed);
+  check.confirm(grey, camera_map, LevelMap(), params, &confirmed);
   return confirmed;
 }
 
@@ -61,6 +61,71 @@ TEST(PhotometricCheck, ConfirmsAMovedTexturedSquareAndNotTheStillBackground) {
   const cv::Rect inside(38, 36, 18, 18), far(0, 70, 96, 26);
   EXPECT_GT(cv::mean(confirmed(inside))[0], 0.9);
   EXPECT_LT(cv::mean(confirmed(far))[0], 0.05);
+}
+
+// The previous frame and a change of light fitted to `grey` from it, the flow exact (none).
+LevelMap fittedLevels(const cv::Mat& grey, const cv::Mat& previous) {
+  PhotometricCheck check;
+  cv::Mat flow_map, carried;
+  flowMap(uniformFlow(grey.size(), {0, 0}), &flow_map);
+  check.followFlow(previous, cv::Mat(), flow_map, &carried);
+  return check.fitLevels(grey);
+}
+
+// A frame brighter as a whole (an exposure, a flickering lamp): measured gain 1.2501, offset
+// -10.02; the texture's brightest levels clip at 255 and are left out of the fit.
+TEST(PhotometricCheck, FitsAChangeOfLight) {
+  const cv::Mat previous = test::greyTexture({96, 96}, 1);
+  cv::Mat brighter;
+  previous.convertTo(brighter, CV_8U, 1.25, -10);
+  const LevelMap levels = fittedLevels(brighter, previous);
+  EXPECT_NEAR(levels.gain, 1.25, 0.005);
+  EXPECT_NEAR(levels.offset, -10, 0.5);
+}
+
+// Where the light does not change, noise and a mover are no change of light: the identity.
+TEST(PhotometricCheck, KeepsTheIdentityWhereTheLightStays) {
+  const cv::Mat previous = test::greyTexture({96, 96}, 1);
+  cv::Mat noisy(previous.size(), CV_8U);
+  cv::randn(noisy, 0, 3);
+  cv::Mat current;
+  cv::add(previous, noisy, current, cv::noArray(), CV_8U);
+  test::greyTexture({30, 30}, 2).copyTo(current(cv::Rect(33, 30, 30, 30)));
+  EXPECT_TRUE(fittedLevels(current, previous).identity());
+  EXPECT_TRUE(fittedLevels(previous, previous).identity());
+  const cv::Mat flat(previous.size(), CV_8U, cv::Scalar(120));
+  EXPECT_TRUE(fittedLevels(flat, flat).identity());
+}
+
+// The moved square of the test above, the frame 20 % brighter: with the change of light fitted
+// (gain 1.18, offset 2.9: 154 at mid-grey, where 1.2 x 128 = 153.6) the square is confirmed as
+// before (measured 1.00 inside, 0.00 far); without it the brightening raises the frame's median
+// difference, the confirmation's unit, and the square is confirmed at 0.33.
+TEST(PhotometricCheck, ConfirmsAMoverUnderAChangeOfLight) {
+  const cv::Size size(96, 96);
+  const cv::Mat background = test::greyTexture(size, 1);
+  const cv::Mat object = test::greyTexture(size, 2);
+  const cv::Rect before(30, 30, 30, 30), after(33, 30, 30, 30);
+  cv::Mat previous = background.clone(), current = background.clone();
+  object(before).copyTo(previous(before));
+  object(before).copyTo(current(after));
+  current.convertTo(current, CV_8U, 1.2);
+  cv::Mat flow = uniformFlow(size, {0, 0});
+  flow(after).setTo(cv::Scalar(-3, 0));
+  cv::Mat flow_map, camera_map, carried, with_light, without;
+  flowMap(flow, &flow_map);
+  cameraMap(cv::Matx33d::eye(), size, &camera_map);
+  PhotometricCheck check;
+  check.followFlow(previous, cv::Mat(), flow_map, &carried);
+  const LevelMap levels = check.fitLevels(current);
+  EXPECT_NEAR(levels.gain * 128 + levels.offset, 1.2 * 128, 2);  // mid-grey
+  check.confirm(current, camera_map, levels, Params(), &with_light);
+  check.followFlow(previous, cv::Mat(), flow_map, &carried);
+  check.confirm(current, camera_map, LevelMap(), Params(), &without);
+  const cv::Rect inside(38, 36, 18, 18), far(0, 70, 96, 26);
+  EXPECT_GT(cv::mean(with_light(inside))[0], 0.9);
+  EXPECT_LT(cv::mean(with_light(far))[0], 0.05);
+  EXPECT_LT(cv::mean(without(inside))[0], 0.6);
 }
 
 // A flat frame explains itself under any motion: a residual there, however large, is the flow
@@ -108,7 +173,7 @@ void expectOpenCvsResults(const cv::Mat& grey, const cv::Mat& previous, const cv
                           const std::string& what, PhotometricCheck* check) {
   cv::Mat carried, ours;
   check->followFlow(previous, mask, flow_map, &carried);
-  check->confirm(grey, camera_map, Params(), &ours);
+  check->confirm(grey, camera_map, LevelMap(), Params(), &ours);
   const cv::Mat opencv = openCvConfirmation(grey, previous, flow_map, camera_map, Params());
   ASSERT_EQ(ours.size(), opencv.size()) << what;
   ASSERT_EQ(ours.type(), CV_32F) << what;
@@ -124,7 +189,7 @@ void expectOpenCvsResults(const cv::Mat& grey, const cv::Mat& previous, const cv
   EXPECT_EQ(cv::countNonZero(carried != opencv_carried), 0) << what;
 
   check->followFlow(previous, cv::Mat(), flow_map, &carried);
-  check->confirm(grey, camera_map, Params(), &ours);
+  check->confirm(grey, camera_map, LevelMap(), Params(), &ours);
   EXPECT_TRUE(carried.empty()) << what;
   EXPECT_EQ(cv::countNonZero(ours != opencv), 0) << what << " without a mask";
 }

@@ -6,14 +6,16 @@
 
 namespace movseg::test {
 
-double meanIou(const SynthOptions& clip, const Params& params, bool grey) {
+void toGrey(int /*t*/, cv::Mat* frame) { cv::cvtColor(*frame, *frame, cv::COLOR_BGR2GRAY); }
+
+double meanIou(const SynthOptions& clip, const Params& params, const FrameChange& change) {
   const SynthSequence sequence(clip);
   Segmenter segmenter(params);
   double sum = 0;
   int counted = 0;
   for (int t = 0; t < sequence.size(); ++t) {
     SynthFrame f = sequence.frame(t);
-    if (grey) cv::cvtColor(f.frame, f.frame, cv::COLOR_BGR2GRAY);
+    if (change) change(t, &f.frame);
     const cv::Mat mask = segmenter.process(f.frame).mask;
     if (t == 0) continue;  // no previous frame, no motion
     const double uni = cv::countNonZero(mask | f.mask);
