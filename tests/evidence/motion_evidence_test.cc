@@ -40,27 +40,34 @@ cv::Mat carriedMask(const cv::Mat& previous_mask, const cv::Mat& flow_map) {
   return carried;
 }
 
-// A textured square moved 3 px right over a still textured background, the flow exact: the
-// square is confirmed, the background is not.
+// A textured square moved 3 px right over a still textured background, the flow exact and the
+// camera still.
+struct MovedSquare {
+  const cv::Size size{96, 96};
+  const cv::Rect inside{38, 36, 18, 18}, far{0, 70, 96, 26};  // in the square; away from it
+  cv::Mat previous, current, flow_map, camera_map;
+
+  MovedSquare() {
+    const cv::Mat background = test::greyTexture(size, 1);
+    const cv::Mat object = test::greyTexture(size, 2);
+    const cv::Rect before(30, 30, 30, 30), after(33, 30, 30, 30);
+    previous = background.clone(), current = background.clone();
+    object(before).copyTo(previous(before));
+    object(before).copyTo(current(after));
+    cv::Mat flow = uniformFlow(size, {0, 0});
+    flow(after).setTo(cv::Scalar(-3, 0));  // current(p) came from previous(p - 3)
+    flowMap(flow, &flow_map);
+    cameraMap(cv::Matx33d::eye(), size, &camera_map);
+  }
+};
+
+// The square is confirmed, the background is not.
 TEST(PhotometricCheck, ConfirmsAMovedTexturedSquareAndNotTheStillBackground) {
-  const cv::Size size(96, 96);
-  const cv::Mat background = test::greyTexture(size, 1);
-  const cv::Mat object = test::greyTexture(size, 2);
-  const cv::Rect before(30, 30, 30, 30), after(33, 30, 30, 30);
-  cv::Mat previous = background.clone(), current = background.clone();
-  object(before).copyTo(previous(before));
-  object(before).copyTo(current(after));
-  cv::Mat flow = uniformFlow(size, {0, 0});
-  flow(after).setTo(cv::Scalar(-3, 0));  // current(p) came from previous(p - 3)
-
-  cv::Mat flow_map, camera_map;
-  flowMap(flow, &flow_map);
-  cameraMap(cv::Matx33d::eye(), size, &camera_map);
-  const cv::Mat confirmed = confirmation(current, previous, flow_map, camera_map);
-
-  const cv::Rect inside(38, 36, 18, 18), far(0, 70, 96, 26);
-  EXPECT_GT(cv::mean(confirmed(inside))[0], 0.9);
-  EXPECT_LT(cv::mean(confirmed(far))[0], 0.05);
+  const MovedSquare scene;
+  const cv::Mat confirmed =
+      confirmation(scene.current, scene.previous, scene.flow_map, scene.camera_map);
+  EXPECT_GT(cv::mean(confirmed(scene.inside))[0], 0.9);
+  EXPECT_LT(cv::mean(confirmed(scene.far))[0], 0.05);
 }
 
 // The previous frame and a change of light fitted to `grey` from it, the flow exact (none).
@@ -97,35 +104,24 @@ TEST(PhotometricCheck, KeepsTheIdentityWhereTheLightStays) {
   EXPECT_TRUE(fittedLevels(flat, flat).identity());
 }
 
-// The moved square of the test above, the frame 20 % brighter: with the change of light fitted
+// The moved square, the frame 20 % brighter: with the change of light fitted
 // (gain 1.18, offset 2.9: 154 at mid-grey, where 1.2 x 128 = 153.6) the square is confirmed as
 // before (measured 1.00 inside, 0.00 far); without it the brightening raises the frame's median
 // difference, the confirmation's unit, and the square is confirmed at 0.33.
 TEST(PhotometricCheck, ConfirmsAMoverUnderAChangeOfLight) {
-  const cv::Size size(96, 96);
-  const cv::Mat background = test::greyTexture(size, 1);
-  const cv::Mat object = test::greyTexture(size, 2);
-  const cv::Rect before(30, 30, 30, 30), after(33, 30, 30, 30);
-  cv::Mat previous = background.clone(), current = background.clone();
-  object(before).copyTo(previous(before));
-  object(before).copyTo(current(after));
-  current.convertTo(current, CV_8U, 1.2);
-  cv::Mat flow = uniformFlow(size, {0, 0});
-  flow(after).setTo(cv::Scalar(-3, 0));
-  cv::Mat flow_map, camera_map, carried, with_light, without;
-  flowMap(flow, &flow_map);
-  cameraMap(cv::Matx33d::eye(), size, &camera_map);
+  MovedSquare scene;
+  scene.current.convertTo(scene.current, CV_8U, 1.2);
   PhotometricCheck check;
-  check.followFlow(previous, cv::Mat(), flow_map, &carried);
-  const LevelMap levels = check.fitLevels(current);
+  cv::Mat carried, with_light, without;
+  check.followFlow(scene.previous, cv::Mat(), scene.flow_map, &carried);
+  const LevelMap levels = check.fitLevels(scene.current);
   EXPECT_NEAR(levels.gain * 128 + levels.offset, 1.2 * 128, 2);  // mid-grey
-  check.confirm(current, camera_map, levels, Params(), &with_light);
-  check.followFlow(previous, cv::Mat(), flow_map, &carried);
-  check.confirm(current, camera_map, LevelMap(), Params(), &without);
-  const cv::Rect inside(38, 36, 18, 18), far(0, 70, 96, 26);
-  EXPECT_GT(cv::mean(with_light(inside))[0], 0.9);
-  EXPECT_LT(cv::mean(with_light(far))[0], 0.05);
-  EXPECT_LT(cv::mean(without(inside))[0], 0.6);
+  check.confirm(scene.current, scene.camera_map, levels, Params(), &with_light);
+  check.followFlow(scene.previous, cv::Mat(), scene.flow_map, &carried);
+  check.confirm(scene.current, scene.camera_map, LevelMap(), Params(), &without);
+  EXPECT_GT(cv::mean(with_light(scene.inside))[0], 0.9);
+  EXPECT_LT(cv::mean(with_light(scene.far))[0], 0.05);
+  EXPECT_LT(cv::mean(without(scene.inside))[0], 0.6);
 }
 
 // A flat frame explains itself under any motion: a residual there, however large, is the flow
