@@ -40,6 +40,7 @@ struct DenseAnalysis : Analysis {
   double scale = 1;                 // bgr = the frame scaled by this
   cv::Size input_size;
   cv::Mat input_grey;  // at the input's size where that is larger: the edges the outline snaps to
+  bool repeat = false;  // the frame equals the previous one (RepeatedFrames)
   double prepare_ms = 0, flow_ms = 0;
 };
 
@@ -112,6 +113,31 @@ void addBias(double bias, cv::Mat* unary) {
   }
 }
 
+// A frame shown twice — a frame rate padded by repeating frames (24 to 30 per second), a stream
+// that repeats its last frame when one is dropped — is no pair of moments: nothing moved between
+// them because no time passed, and reading the pair as a still scene would erase every mover.
+// A frame equal to the previous one (every pixel at the working scale) is a repeat, but only the
+// first of a run: a scene that stays the same for longer is still, and a mover that left a
+// noiseless still scene must leave the mask (a real camera's noise never repeats a frame).
+class RepeatedFrames {
+ public:
+  bool isRepeat(const cv::Mat& grey) {
+    const bool same = grey.size() == last_.size() && cv::norm(grey, last_, cv::NORM_INF) == 0;
+    const bool repeat = same && !last_was_same_;
+    last_was_same_ = same;
+    if (!same) grey.copyTo(last_);
+    return repeat;
+  }
+  void reset() {
+    last_.release();
+    last_was_same_ = false;
+  }
+
+ private:
+  cv::Mat last_;  // the last frame, kept where it differs from the one before
+  bool last_was_same_ = false;
+};
+
 // Depth read from one pair may be movers agreeing on an epipole by chance, or water; a translating
 // camera's view of a static scene shows it pair after pair. So the epipole counts on a pair that
 // has one when most of the last kPairs pairs (this one included) had one. A majority rather than
@@ -165,7 +191,9 @@ class DensePipeline : public Pipeline {
     blockContrast(a.bgr, params_.smoothness, &a.contrast);
     a.prepare_ms = millisecondsSince(start);
     start = Clock::now();
-    if (a.first_frame) flow_.reset();
+    if (a.first_frame) flow_.reset(), repeats_.reset();
+    a.repeat = repeats_.isRepeat(a.grey);
+    if (a.repeat) return;  // the flow and its warm start stay the previous pair's
     flow_.next(a.grey, &a.flow);
     if (!a.flow.empty()) flowMap(a.flow, &a.flow_map);
     a.flow_ms = millisecondsSince(start);
@@ -179,6 +207,8 @@ class DensePipeline : public Pipeline {
     const Remember remember{a, &previous_};
     has_pair_ = false;
     input_size_ = a.input_size;
+    diag.repeated_frame = a.repeat;
+    if (a.repeat) return repeatedMask(a);
     // A frame too small for the flow (DenseFlow) has no camera to measure: say so.
     diag.motion_fallback = !a.first_frame && a.flow.empty();
     if (a.first_frame || a.flow.empty()) return forget(a.bgr.size());
@@ -211,7 +241,10 @@ class DensePipeline : public Pipeline {
     return mask;
   }
 
-  void reset() override { flow_.reset(); }
+  void reset() override {
+    flow_.reset();
+    repeats_.reset();
+  }
 
   cv::Mat compensatedPreviousFrame() const override {
     if (!has_pair_) return cv::Mat();
@@ -229,6 +262,12 @@ class DensePipeline : public Pipeline {
     last_model_.reset();
     mask_.release();
     return cv::Mat::zeros(size, CV_8U);
+  }
+
+  // A repeated frame's mask: the last cut's, its outline snapped to the same edges again.
+  cv::Mat repeatedMask(const DenseAnalysis& a) {
+    if (mask_.empty()) return cv::Mat::zeros(a.bgr.size(), CV_8U);
+    return edge_snap_.snap(mask_, a.grey, params_.edge_snap, a.input_grey);
   }
 
   // The previous mask carried by the flow (carried_), the camera fitted to the flow of the
@@ -310,6 +349,7 @@ class DensePipeline : public Pipeline {
   EvidenceCut cut_;
   EdgeSnap edge_snap_;
   PersistentDepth depth_;
+  RepeatedFrames repeats_;  // phase 1's, as the flow
   // The last fitted camera model, the next fit's warm start: a pair that fell back to the
   // identity leaves it as it was, a scene cut forgets it (a model must come from the scene it
   // is tried on).

@@ -97,6 +97,28 @@ TEST(Dense, MasksOfTheFirstFramesDoNotDependOnLaterOnes) {
   EXPECT_TRUE(test::identical(whole_masks, stopped_masks));
 }
 
+// A frame shown twice (a padded frame rate, a dropped frame replaced by the last) is no new
+// moment: the repeat gets its original's mask, and the stream goes on as if it had not come —
+// the masks after it are those of the stream without it, to the bit.
+TEST(Dense, ARepeatedFrameChangesNothing) {
+  const SynthSequence sequence(clip(SynthCamera::kMix, true));
+  Segmenter plain(test::withMethod(Method::kDense)), repeated(test::withMethod(Method::kDense));
+  std::vector<cv::Mat> plain_masks, repeated_masks;
+  for (int t = 0; t < 16; ++t) {
+    const cv::Mat frame = sequence.frame(t).frame;
+    plain_masks.push_back(plain.process(frame).mask);
+    const Result result = repeated.process(frame);
+    EXPECT_FALSE(result.diagnostics.repeated_frame) << "frame " << t;
+    repeated_masks.push_back(result.mask);
+    if (t != 10) continue;
+    const Result again = repeated.process(frame);
+    EXPECT_TRUE(again.diagnostics.repeated_frame);
+    ASSERT_GT(cv::countNonZero(again.mask), 0);
+    EXPECT_TRUE(test::identical({again.mask}, {result.mask}));
+  }
+  EXPECT_TRUE(test::identical(plain_masks, repeated_masks));
+}
+
 // A textured square crosses a still textured scene and leaves it on the right: once it is
 // gone, nothing in the frame moves, and the memory of it must fade within a few frames.
 TEST(Dense, AMoverThatLeavesTheViewLeavesTheMask) {

@@ -53,6 +53,9 @@ TEST(DegenerateScenes, DenseFlagsFramesWithoutMeasurableMotion) {
   for (const cv::Mat& frame : frames) {
     Segmenter segmenter(test::withMethod(Method::kDense));
     EXPECT_FALSE(segmenter.process(frame).diagnostics.motion_fallback);  // a first frame
+    // Shown again, the frame is a repeat (docs/design.md, "Repeated frames"); from the third
+    // time on, a still scene, measured.
+    EXPECT_TRUE(segmenter.process(frame).diagnostics.repeated_frame) << frame.size;
     for (int i = 0; i < 2; ++i) {
       const Result r = segmenter.process(frame);
       test::expectValidResult(r, frame.size());
@@ -64,7 +67,10 @@ TEST(DegenerateScenes, DenseFlagsFramesWithoutMeasurableMotion) {
   // A textured frame is measured: the flag is not raised for nothing.
   Segmenter segmenter(test::withMethod(Method::kDense));
   segmenter.process(test::texture(kSize, 5));
-  EXPECT_FALSE(segmenter.process(test::texture(kSize, 5)).diagnostics.motion_fallback);
+  segmenter.process(test::texture(kSize, 5));  // a repeat
+  const Result still = segmenter.process(test::texture(kSize, 5));
+  EXPECT_FALSE(still.diagnostics.repeated_frame);
+  EXPECT_FALSE(still.diagnostics.motion_fallback);
 }
 
 TEST(DegenerateScenes, PureNoiseRaisesLambdaInsteadOfLightingUp) {
