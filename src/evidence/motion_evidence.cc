@@ -116,14 +116,11 @@ int medianLevelError(const cv::Mat& grey, const cv::Mat& previous, const LevelMa
   return median(histogram);
 }
 
-// *image's levels through `map`.
+// *image's levels through `map`, in place.
 void mapLevels(const LevelMap& map, cv::Mat* image) {
   uchar table[256];
   map.table(table);
-  for (int y = 0; y < image->rows; ++y) {
-    uchar* row = image->ptr<uchar>(y);
-    for (int x = 0; x < image->cols; ++x) row[x] = table[row[x]];
-  }
+  cv::LUT(*image, cv::Mat(1, 256, CV_8U, table), *image);
 }
 
 }  // namespace

@@ -191,7 +191,10 @@ class DensePipeline : public Pipeline {
     blockContrast(a.bgr, params_.smoothness, &a.contrast);
     a.prepare_ms = millisecondsSince(start);
     start = Clock::now();
-    if (a.first_frame) flow_.reset(), repeats_.reset();
+    if (a.first_frame) {
+      flow_.reset();
+      repeats_.reset();
+    }
     a.repeat = repeats_.isRepeat(a.grey);
     if (a.repeat) return;  // the flow and its warm start stay the previous pair's
     flow_.next(a.grey, &a.flow);
