@@ -41,6 +41,7 @@ struct BenchOptions {
   cv::Size resize;   // size, parsed; empty for native
   std::string json_file;
   std::string html_file;
+  std::string ignore;  // segment's --ignore, for every run
   Params params;
   int threads = 1;  // runs at a time
 };
@@ -94,6 +95,7 @@ SegmentOptions runOptions(const GtSequence& sequence, const std::string& method,
   setParam(&segment.params, "method", method);
   segment.quiet = true;
   segment.resize = options.resize;
+  segment.ignore = options.ignore;
   return segment;
 }
 
@@ -276,7 +278,8 @@ void runBench(const BenchOptions& options) {
                            : std::to_string(options.threads) + " runs at a time, one thread each";
   const std::string setting =
       "movseg bench on " + cpuModel() + ", " + threads +
-      (options.size.empty() ? ", native size" : ", frames resized to " + options.size);
+      (options.size.empty() ? ", native size" : ", frames resized to " + options.size) +
+      (options.ignore.empty() ? "" : ", ignoring " + options.ignore);
   std::cout << setting << "\n"
             << formatRows(rows) << formatRows(means).substr(formatRows({}).size())
             << "J, F, error: means over frames after the first of each sequence (it has no "
@@ -322,6 +325,9 @@ void addBenchCommand(CLI::App& app) {
                   "also the throughput of one stream on 1 and 2 threads and of N streams at once")
       ->check(CLI::Range(1, 256))
       ->capture_default_str();
+  cmd->add_option("--ignore", options->ignore,
+                  "An image, white where nothing moves (as segment's), for every sequence")
+      ->type_name("IMAGE");
   cmd->add_option("--json", options->json_file, "Write the table as JSON");
   cmd->add_option("--html", options->html_file,
                   "Write a report page: the table, charts of J, each sequence's worst frames");

@@ -101,6 +101,10 @@ void addSegmentCommand(CLI::App& app) {
   cmd->add_option("--max-frames", options->max_frames, "Stop after N frames (at least 1)")
       ->check(CLI::Range(1, std::numeric_limits<int>::max()));
   cmd->add_option("--stats", options->stats_file, "Per-frame diagnostics as JSON Lines");
+  cmd->add_option("--ignore", options->ignore,
+                  "An image, white where nothing moves: what is fixed to the camera (a bonnet, "
+                  "a timestamp), scaled to the frames")
+      ->type_name("IMAGE");
   cmd->add_flag("--overwrite", options->overwrite,
                 "Replace the outputs of an earlier run in OUTDIR (else such a folder is refused)");
   auto timeout = std::make_shared<double>(10);

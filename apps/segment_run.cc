@@ -17,6 +17,7 @@
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
@@ -119,6 +120,15 @@ void checkOutputPaths(const SegmentOptions& options) {
   }
 }
 
+// The region of Segmenter::setIgnoredRegion drawn as an image: white (above 127) where nothing
+// moves, as the masks movseg writes; a JPEG's ringing around it stays black.
+cv::Mat readIgnoredRegion(const std::string& path) {
+  cv::Mat region = cv::imread(path, cv::IMREAD_GRAYSCALE);
+  if (region.empty()) throw std::runtime_error("--ignore " + path + ": cannot read it as an image");
+  cv::threshold(region, region, 127, 255, cv::THRESH_BINARY);
+  return region;
+}
+
 // ---- the run manifest -------------------------------------------------------------------------
 
 // The manifest's record of a run: its input and every setting that changes a mask.
@@ -130,6 +140,7 @@ nlohmann::json runIdentity(const SegmentOptions& options) {
   if (!options.resize.empty()) {
     settings["size"] = std::to_string(options.resize.width) + "x" + std::to_string(options.resize.height);
   }
+  if (!options.ignore.empty()) settings["ignore"] = options.ignore;
   return {{"input", options.input}, {"settings", settings}};
 }
 
@@ -523,6 +534,7 @@ SegmentSummary runSegmentation(const SegmentOptions& options) {
   // One code path for both thread counts: on one thread each frame's result is flushed at once,
   // as Segmenter::process would give it.
   StreamSegmenter segmenter(params, options.threads);
+  if (!options.ignore.empty()) segmenter.setIgnoredRegion(readIgnoredRegion(options.ignore));
   StopOnSignal stop_on_signal;
   std::unique_ptr<FrameSource> source =
       FrameSource::open(options.input, DecoderLimits{options.timeout, &g_stop});

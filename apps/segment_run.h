@@ -27,6 +27,8 @@ struct SegmentOptions {
   std::chrono::milliseconds timeout{10000};  // streams: open and read give up (0 = never)
   bool stop_on_decode_error = false;         // else decode errors are counted and reported
   Params params;              // params.method chooses the pipeline
+  std::string ignore;         // "" none; an image, white (above 127) where nothing moves
+                              // (Segmenter::setIgnoredRegion), scaled to the frames
   bool quiet = false;         // no progress, no summary line
   cv::Size resize;            // non-empty: frames are resized to this before segmentation and
                               // the masks back to the frame's own size (bench --size)
@@ -53,7 +55,8 @@ struct SegmentSummary {
 
 // Throws UsageError (commands.h) for output paths that are empty, are the input or lie inside
 // it, an overlay name that is neither a folder nor a video, or a folder holding an earlier
-// run's outputs (without `overwrite`); std::runtime_error with a one-line message on bad input,
+// run's outputs (without `overwrite`); std::runtime_error with a one-line message on bad input
+// (an `ignore` image that cannot be read among it, before anything is written),
 // a failed write, a decode error with stop_on_decode_error, or --show without a display. The
 // files written before a failure stay complete under their final names.
 SegmentSummary runSegmentation(const SegmentOptions& options);

@@ -67,6 +67,15 @@ class Segmenter {
   // Forgets the previous frame: the next frame is treated as a first frame.
   void reset();
 
+  // Pixels that never move, from the next frame on: what is fixed to the camera (a dash-cam's
+  // bonnet, a burnt-in timestamp or logo, a robot's own arm) stands still in the image while the
+  // world moves, and would be taken for a mover. `region`: CV_8U with one channel, non-zero
+  // where ignored, of any size (scaled to each frame's, nearest neighbour); empty: none. The
+  // mask is 0 there for every method; `dense` also leaves it out of the camera's fit, the
+  // residual's scale, the photometric check's unit and the scene-cut test. Throws
+  // std::invalid_argument for another type; nothing has changed then.
+  void setIgnoredRegion(const cv::Mat& region);
+
   // The previous frame warped into the last processed frame's coordinates (8-bit BGR); empty
   // before the second frame. Throws std::runtime_error when OpenCV cannot warp it (a frame of
   // 32767 pixels or more a side).

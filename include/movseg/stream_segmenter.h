@@ -34,6 +34,9 @@ class StreamSegmenter {
   // Forgets the stream, dropping a result not yet returned (flush() first to keep it).
   void reset();
 
+  // As Segmenter::setIgnoredRegion, from the next frame pushed on.
+  void setIgnoredRegion(const cv::Mat& region);
+
   const Params& params() const;
 
  private:

@@ -1,5 +1,6 @@
 // movseg.Segmenter, movseg.StreamSegmenter, and movseg.createMovingCameraSubtractor for code
 // written for cv2's MOG2.
+#include <cstdint>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -51,6 +52,26 @@ std::optional<Result> push(PyStream& stream, const py::object& frame, bool rgb) 
   return stream.run([&](StreamSegmenter& s) { return s.push(mat); });
 }
 
+// set_ignored_region's region: None (none), or a 2-D array whose non-zero elements are ignored.
+// Read with the GIL held, before the call that sets it releases it.
+cv::Mat regionFromArray(const py::object& region) {
+  if (region.is_none()) return cv::Mat();
+  using Bytes = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>;
+  const Bytes ignored = Bytes::ensure(py::module_::import("numpy").attr("not_equal")(region, 0));
+  if (!ignored || ignored.ndim() != 2) {
+    throw py::value_error("the ignored region must be a 2-D array (HxW), non-zero where ignored");
+  }
+  return cv::Mat(static_cast<int>(ignored.shape(0)), static_cast<int>(ignored.shape(1)), CV_8U,
+                 const_cast<std::uint8_t*>(ignored.data()))
+      .clone();
+}
+
+constexpr const char* kIgnoredRegionDoc =
+    "Pixels that never move, from the next frame on: what is fixed to the camera (a dash-cam's "
+    "bonnet, a burnt-in timestamp or logo). region: a 2-D array (HxW), non-zero where ignored, "
+    "of any size (scaled to each frame's); None: none. The mask is 0 there; the dense method "
+    "also leaves it out of what it measures. Raises ValueError for another shape.";
+
 // A cv2.BackgroundSubtractor object as OpenCV's Python module lays it out (CVPY_TYPE_DECLARE in
 // its modules/python/src2/pycompat.hpp): the object header, then the class's C++ object.
 struct Cv2Subtractor {
@@ -93,6 +114,12 @@ void bindSegmenter(py::module_& module) {
            "dtype or value range, TypeError for anything but a numpy array.")
       .def("reset", [](PySegmenter& s) { s.run([](Segmenter& segmenter) { segmenter.reset(); }); },
            "Forgets the previous frame.")
+      .def("set_ignored_region",
+           [](PySegmenter& s, const py::object& region) {
+             const cv::Mat ignored = regionFromArray(region);
+             s.run([&](Segmenter& segmenter) { segmenter.setIgnoredRegion(ignored); });
+           },
+           py::arg("region"), kIgnoredRegionDoc)
       .def("compensated_previous_frame",
            [](PySegmenter& s) {
              return arrayFromMat(s.run([](Segmenter& segmenter) {
@@ -125,6 +152,12 @@ void bindSegmenter(py::module_& module) {
            "The Result of the last frame pushed, once; None when none is waiting.")
       .def("reset", [](PyStream& s) { s.run([](StreamSegmenter& stream) { stream.reset(); }); },
            "Forgets the stream, dropping a Result not yet returned (flush() first to keep it).")
+      .def("set_ignored_region",
+           [](PyStream& s, const py::object& region) {
+             const cv::Mat ignored = regionFromArray(region);
+             s.run([&](StreamSegmenter& stream) { stream.setIgnoredRegion(ignored); });
+           },
+           py::arg("region"), kIgnoredRegionDoc)
       .def_property_readonly(
           "params",
           [](PyStream& s) { return s.run([](StreamSegmenter& stream) { return stream.params(); }); },

@@ -48,6 +48,9 @@ def parse_arguments(argv):
     parser.add_argument("--method", help="segmentation method (movseg segment --method)")
     parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                         help="a parameter by its name (movseg segment --set), repeatable")
+    parser.add_argument("--ignore", metavar="IMAGE",
+                        help="white where nothing moves, for every input (movseg segment "
+                             "--ignore); every worker must see it at its absolute path")
     parser.add_argument("--gt", metavar="DIR",
                         help="ground truth, DIR/<name>/ per input (as movseg eval reads it): "
                              "adds J and F to the summary")
@@ -208,7 +211,8 @@ def run(args):
     os.makedirs(output, exist_ok=True)
     named = named_inputs(expand_inputs(args.inputs))
     options = (["--method", args.method] if args.method else []) + \
-        [item for value in args.set for item in ("--set", value)]
+        [item for value in args.set for item in ("--set", value)] + \
+        (["--ignore", os.path.abspath(args.ignore)] if args.ignore else [])
     rows, todo = {}, []
     for name, source in named.items():
         finished = None if args.force else finished_row(output, name)

@@ -6,6 +6,8 @@
 #include <string>
 #include <utility>
 
+#include <opencv2/imgproc.hpp>
+
 #include "core/timing.h"
 #include "core/work_limit.h"
 
@@ -75,7 +77,10 @@ void FrameLoop::analyse(const cv::Mat& bgr, Job* job) {
   diag.work_limited = work_limited_;
   size_ = job->size = bgr.size();
   job->pipeline = pipeline_;
-  openCvChecked([&] { pipeline_->analyse(bgr, job->analysis.get()); });
+  openCvChecked([&] {
+    job->analysis->ignored = ignoredAt(bgr.size());
+    pipeline_->analyse(bgr, job->analysis.get());
+  });
   job->analyse_ms = millisecondsSince(start);
 }
 
@@ -93,6 +98,8 @@ void FrameLoop::segment(Job* job) {
       result.mask.setTo(0);
     } else {
       upscaledMask(mask, job->size, &result.mask);
+      const cv::Mat& ignored = job->analysis->ignored;
+      if (!ignored.empty()) result.mask.setTo(0, ignored);
     }
   });
   debug.put("mask", [&] { return result.mask; });
@@ -107,6 +114,27 @@ void FrameLoop::reset() {
 cv::Mat FrameLoop::compensatedPreviousFrame() const {
   if (size_.empty()) return cv::Mat();  // no stream since reset(): nothing to warp
   return openCvChecked([&] { return pipeline_->compensatedPreviousFrame(); });
+}
+
+void FrameLoop::setIgnoredRegion(const cv::Mat& region) {
+  if (!region.empty() && region.type() != CV_8UC1) {
+    throw std::invalid_argument(
+        "the ignored region must be 8-bit with one channel, non-zero where ignored");
+  }
+  cv::Mat binary;
+  if (!region.empty()) cv::compare(region, 0, binary, cv::CMP_NE);
+  ignored_ = binary;
+  ignored_at_size_ = cv::Mat();  // analyses in flight keep the old one
+}
+
+// Nearest neighbours: the region stays 0 / 255, and a region drawn on a frame of the input's
+// size is that frame's pixels exactly.
+const cv::Mat& FrameLoop::ignoredAt(cv::Size size) {
+  if (ignored_.empty() || ignored_at_size_.size() == size) return ignored_at_size_;
+  cv::Mat scaled;  // a new buffer: the analyses hold the last one
+  cv::resize(ignored_, scaled, size, 0, 0, cv::INTER_NEAREST);
+  ignored_at_size_ = scaled;
+  return ignored_at_size_;
 }
 
 // A stream runs within the work limit of its frame size (core/work_limit.h). The defaults never

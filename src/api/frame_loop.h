@@ -48,6 +48,9 @@ class FrameLoop {
   // The next frame starts a new stream.
   void reset();
 
+  // The region of the frames to ignore from the next analysed frame on (Segmenter's).
+  void setIgnoredRegion(const cv::Mat& region);
+
   const Params& params() const { return params_; }
 
   // The pipeline's compensatedPreviousFrame(), empty after reset(); throws as analyse() does.
@@ -55,6 +58,8 @@ class FrameLoop {
 
  private:
   void startStream(cv::Size size);
+  // The ignored region at `size`, made again only when the size or the region changes.
+  const cv::Mat& ignoredAt(cv::Size size);
 
   Params params_;
   // The current stream's pipeline, made with the parameters of its work limit. A new one
@@ -65,6 +70,8 @@ class FrameLoop {
   cv::Size size_;  // of the last analysed frame; empty before the first frame of a stream
   FramePool frames_;
   FramePool masks_;  // of the results' masks: a caller that lets a result go gives it back
+  cv::Mat ignored_;          // as the user gave it, 0 / 255; empty: none
+  cv::Mat ignored_at_size_;  // scaled to the last frame's size; analyses share it, never written
 };
 
 }  // namespace movseg

@@ -40,6 +40,8 @@ Result Segmenter::process(const cv::Mat& frame) {
 
 void Segmenter::reset() { impl_->loop.reset(); }
 
+void Segmenter::setIgnoredRegion(const cv::Mat& region) { impl_->loop.setIgnoredRegion(region); }
+
 cv::Mat Segmenter::compensatedPreviousFrame() const {
   return impl_->loop.compensatedPreviousFrame();
 }

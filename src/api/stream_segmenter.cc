@@ -100,6 +100,11 @@ void StreamSegmenter::reset() {
   impl_->restart();
 }
 
+void StreamSegmenter::setIgnoredRegion(const cv::Mat& region) {
+  impl_->settle();  // the analysis in flight reads the loop's region
+  impl_->loop.setIgnoredRegion(region);
+}
+
 const Params& StreamSegmenter::params() const { return impl_->loop.params(); }
 
 }  // namespace movseg

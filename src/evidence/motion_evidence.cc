@@ -60,14 +60,17 @@ void patchError(const cv::Mat& grey, cv::Mat* warped, BoxMean5* patch_mean, cv::
   patch_mean->apply(*warped, error);  // 8-bit: rounded, as fine as noise
 }
 
-// The median of an 8-bit image.
-int median8(const cv::Mat& image) {
+// The median of an 8-bit image, the pixels where `ignored` (empty: none) is non-zero left out.
+int median8(const cv::Mat& image, const cv::Mat& ignored) {
   LevelHistogram histogram{};
   for (int y = 0; y < image.rows; ++y) {
     const uchar* row = image.ptr<uchar>(y);
     // Unrolled: the loop's own counting and branching were half its instructions.
 #pragma GCC unroll 8
     for (int x = 0; x < image.cols; ++x) ++histogram[row[x]];
+    if (ignored.empty()) continue;
+    const uchar* left_out = ignored.ptr<uchar>(y);
+    for (int x = 0; x < image.cols; ++x) histogram[row[x]] -= left_out[x] != 0;
   }
   return median(histogram);
 }
@@ -169,8 +172,8 @@ LevelMap PhotometricCheck::fitLevels(const cv::Mat& grey) const {
 }
 
 void PhotometricCheck::confirm(const cv::Mat& grey, const cv::Mat& camera_map,
-                               const LevelMap& levels, const Params& params,
-                               cv::Mat* confirmation) {
+                               const LevelMap& levels, const cv::Mat& ignored,
+                               const Params& params, cv::Mat* confirmation) {
   previous_.remap(camera_map, &by_camera_);
   if (!levels.identity()) {
     mapLevels(levels, &by_flow_);
@@ -180,7 +183,7 @@ void PhotometricCheck::confirm(const cv::Mat& grey, const cv::Mat& camera_map,
   patchError(grey, &by_camera_, &patch_mean_, &camera_error_);
   // One grey level at least: an 8-bit difference cannot resolve less.
   const float margin = static_cast<float>(params.photometric_margin) *
-                       static_cast<float>(std::max(median8(camera_error_), 1));
+                       static_cast<float>(std::max(median8(camera_error_, ignored), 1));
   confirmation->create(grey.size(), CV_32F);
   for (int y = 0; y < grey.rows; ++y) {
     confirmationRow(flow_error_.ptr<uchar>(y), camera_error_.ptr<uchar>(y), margin, grey.cols,

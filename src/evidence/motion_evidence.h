@@ -66,10 +66,11 @@ class PhotometricCheck {
   LevelMap fitLevels(const cv::Mat& grey) const;
 
   // The pair followFlow() was last given: `grey` (CV_8U) the current frame, the camera's map as
-  // cameraMap() makes it, `levels` the pair's change of light (fitLevels()). `confirmation`:
-  // CV_32F.
+  // cameraMap() makes it, `levels` the pair's change of light (fitLevels()), `ignored` (CV_8U,
+  // or empty) non-zero where the frame's median difference, the unit, must not look: a region
+  // fixed to the camera differs under it everywhere. `confirmation`: CV_32F.
   void confirm(const cv::Mat& grey, const cv::Mat& camera_map, const LevelMap& levels,
-               const Params& params, cv::Mat* confirmation);
+               const cv::Mat& ignored, const Params& params, cv::Mat* confirmation);
 
  private:
   BilinearRemap previous_;       // the previous grey frame, its border replicated

@@ -24,6 +24,9 @@ class DenseFlow {
 
   void reset();
 
+  // DisFlow::reach().
+  int reach() const { return dis_.reach(); }
+
  private:
   DisFlow dis_;
   DisFrame frames_[2];    // the current and the previous frame, prepared

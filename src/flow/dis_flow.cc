@@ -433,6 +433,8 @@ struct DisFlow::LevelShape {
 
 DisFlow::DisFlow(int finest_scale) : finest_scale_(finest_scale) { CV_Assert(finest_scale >= 0); }
 
+int DisFlow::reach() const { return kPatch << finest_scale_; }
+
 void DisFlow::prepare(const cv::Mat& grey, DisFrame* frame) {
   CV_Assert(grey.type() == CV_8UC1 && grey.isContinuous());
   CV_Assert(std::min(grey.cols, grey.rows) >= 2 * kPatch);

@@ -86,6 +86,10 @@ class DisFlow {
   // The same from two images, prepared here; for single pairs and tests.
   void calc(const cv::Mat& from, const cv::Mat& to, const cv::Mat& initial, cv::Mat* flow);
 
+  // How far from a pixel, in the frame's pixels, the image shapes its flow: the side of a patch
+  // at the finest scale, any of which covering the pixel has a say in its flow.
+  int reach() const;
+
  private:
   struct LevelShape;
 

@@ -191,10 +191,12 @@ float minEigenValueAt(const cv::Mat& grey, cv::Point p) {
   return static_cast<float>((a + c) - std::sqrt((a - c) * (a - c) + b * b));
 }
 
-void gridSamples(const cv::Mat& grey, int step, std::vector<GridSample>* samples) {
+void gridSamples(const cv::Mat& grey, int step, const cv::Mat& ignored,
+                 std::vector<GridSample>* samples) {
   samples->clear();
   for (int y = step / 2; y < grey.rows; y += step) {
     for (int x = step / 2; x < grey.cols; x += step) {
+      if (!ignored.empty() && ignored.at<uchar>(y, x) != 0) continue;
       samples->push_back({{x, y}, minEigenValueAt(grey, {x, y})});
     }
   }

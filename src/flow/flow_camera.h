@@ -33,9 +33,10 @@ struct GridSample {
 };
 
 // Every `step` pixels of `grey` (CV_8U, the current frame), with their minEigenValueAt, into
-// `samples`. Needs the
-// frame alone, so it is made with the flow, before the previous mask is known.
-void gridSamples(const cv::Mat& grey, int step, std::vector<GridSample>* samples);
+// `samples`, none where `ignored` (CV_8U of grey's size, or empty) is non-zero. Needs the frame
+// alone, so it is made with the flow, before the previous mask is known.
+void gridSamples(const cv::Mat& grey, int step, const cv::Mat& ignored,
+                 std::vector<GridSample>* samples);
 
 // Samples `flow` (CV_32FC2, current -> previous) at the `grid` samples whose texture is above
 // its lower `params.flow_texture_quantile` — flat pixels carry no flow information — and fits a

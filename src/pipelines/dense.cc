@@ -40,6 +40,11 @@ struct DenseAnalysis : Analysis {
   double scale = 1;                 // bgr = the frame scaled by this
   cv::Size input_size;
   cv::Mat input_grey;  // at the input's size where that is larger: the edges the outline snaps to
+  // Analysis::ignored at the working scale, or empty: no evidence, no mask. And grown by the
+  // flow's reach: the still region shapes the flow there too, which then goes the region's way
+  // (seen as depth at infinity, a car lost along its epipolar lines): no camera sample, no say
+  // in the photometric check's unit or the scene-cut test.
+  cv::Mat working_ignored, near_ignored;
   bool repeat = false;  // the frame equals the previous one (RepeatedFrames)
   double prepare_ms = 0, flow_ms = 0;
 };
@@ -65,18 +70,23 @@ struct Remember {
 
 // A scene cut (classify/scene_cut.h) judged on every other pixel of every other row: eq. (4)'s d
 // between the frame and the previous one at the pixel nearest to where the camera puts it, its
-// levels mapped by the pair's change of light (a brighter exposure is the same scene). A median
-// over a quarter of the pixels decides as well as over all; warping the whole frame for it would
-// cost more than the rest of the pair's evidence.
+// levels mapped by the pair's change of light (a brighter exposure is the same scene), the
+// ignored region (CV_8U, or empty) left out. A median over a quarter of the pixels decides as
+// well as over all; warping the whole frame for it would cost more than the rest of the pair's
+// evidence.
 bool isSceneCutUnderCamera(const cv::Mat& bgr, const cv::Mat& previous_bgr,
-                           const cv::Mat& camera_map, const LevelMap& levels) {
+                           const cv::Mat& camera_map, const LevelMap& levels,
+                           const cv::Mat& ignored) {
   uchar table[256];
   levels.table(table);
   long samples = 0, covered = 0, differing = 0;
   for (int y = 0; y < bgr.rows; y += 2) {
     const auto* at = camera_map.ptr<cv::Vec2f>(y);
     const auto* colour = bgr.ptr<cv::Vec3b>(y);
-    for (int x = 0; x < bgr.cols; x += 2, ++samples) {
+    const uchar* left_out = ignored.empty() ? nullptr : ignored.ptr<uchar>(y);
+    for (int x = 0; x < bgr.cols; x += 2) {
+      if (left_out != nullptr && left_out[x] != 0) continue;
+      ++samples;
       const cv::Point p(cvRound(at[x][0]), cvRound(at[x][1]));
       if (p.x < 0 || p.y < 0 || p.x >= bgr.cols || p.y >= bgr.rows) continue;
       const cv::Vec3b before = previous_bgr.at<cv::Vec3b>(p);
@@ -87,6 +97,20 @@ bool isSceneCutUnderCamera(const cv::Mat& bgr, const cv::Mat& previous_bgr,
     }
   }
   return isSceneCut(samples, covered, differing);
+}
+
+// DenseAnalysis' working_ignored and near_ignored from the frame's `ignored` (both empty when it
+// is); `reach`: the flow's (DenseFlow::reach()).
+void scaleIgnored(const cv::Mat& ignored, cv::Size size, int reach, cv::Mat* exact,
+                  cv::Mat* near) {
+  if (ignored.empty()) {
+    exact->release();
+    near->release();
+    return;
+  }
+  cv::resize(ignored, *exact, size, 0, 0, cv::INTER_NEAREST);
+  const int side = 2 * reach + 1;
+  cv::dilate(*exact, *near, cv::getStructuringElement(cv::MORPH_RECT, {side, side}));
 }
 
 // The residuals at the samples the photometric check does not confirm as moving (less than
@@ -187,7 +211,8 @@ class DensePipeline : public Pipeline {
     } else {
       a.input_grey.release();
     }
-    gridSamples(a.grey, params_.flow_sample_step, &a.samples);
+    scaleIgnored(analysis->ignored, size, flow_.reach(), &a.working_ignored, &a.near_ignored);
+    gridSamples(a.grey, params_.flow_sample_step, a.near_ignored, &a.samples);
     blockContrast(a.bgr, params_.smoothness, &a.contrast);
     a.prepare_ms = millisecondsSince(start);
     start = Clock::now();
@@ -222,7 +247,8 @@ class DensePipeline : public Pipeline {
 
     start = Clock::now();
     levels_ = photometric_.fitLevels(a.grey);
-    diag.scene_cut = isSceneCutUnderCamera(a.bgr, previous_.bgr, camera_map_, levels_);
+    diag.scene_cut =
+        isSceneCutUnderCamera(a.bgr, previous_.bgr, camera_map_, levels_, a.near_ignored);
     if (diag.scene_cut) return forget(a.bgr.size());
     diag.residual_scale = pairEvidence(a, debug);
     unaryOf(a);
@@ -230,6 +256,7 @@ class DensePipeline : public Pipeline {
 
     start = Clock::now();
     cut_.cut(unary_, a.contrast, &diag.cut_nodes, &mask_);
+    if (!a.working_ignored.empty()) mask_.setTo(0, a.working_ignored);  // nor carried on
     const cv::Mat mask = edge_snap_.snap(mask_, a.grey, params_.edge_snap, a.input_grey);
     diag.cut_ms = millisecondsSince(start);
     debug.put("residual", [&] { return drawResidual(residual_, diag.residual_scale); });
@@ -290,9 +317,9 @@ class DensePipeline : public Pipeline {
 
   // The pair's own evidence (evidence_): the residual in units of the background's (the scale,
   // returned), confirmed by the photometric check, none where the last mover uncovered the
-  // background.
+  // background, nothing either way where the region is ignored (colour learns nothing there).
   float pairEvidence(const DenseAnalysis& a, const DebugSink& debug) {
-    photometric_.confirm(a.grey, camera_map_, levels_, params_, &confirmation_);
+    photometric_.confirm(a.grey, camera_map_, levels_, a.near_ignored, params_, &confirmation_);
     sample_residuals_.reserve(a.samples.size());  // at most one per sample: they do not grow
     unconfirmed_.reserve(a.samples.size());
     const float scale = residualScale(
@@ -301,6 +328,7 @@ class DensePipeline : public Pipeline {
     confirmMotion(confirmation_, &evidence_);
     const bool uncovers = !carried_.empty() && params_.uncovered;
     if (uncovers) dropUncovered(carried_, mask_, camera_map_, &evidence_);
+    if (!a.working_ignored.empty()) evidence_.setTo(0, a.working_ignored);
     // White: background the last frame's mover uncovered (mask_ is still that frame's here).
     debug.put("uncovered", [&] {
       cv::Mat picture = cv::Mat::zeros(a.grey.size(), CV_8U);

@@ -38,6 +38,10 @@ class DebugSink {
 struct Analysis {
   virtual ~Analysis() = default;
   bool first_frame = false;  // no previous frame: stream start, reset() or a size change
+  // Where nothing moves, at the frame's size (CV_8U, non-zero there), or empty: the region the
+  // user said to ignore (Segmenter::setIgnoredRegion). The frame loop clears the mask there; a
+  // pipeline that can also keeps it out of what it measures.
+  cv::Mat ignored;
 };
 
 // A method in two phases, so that a stream can overlap them on two threads: phase 1 (analyse)

@@ -149,6 +149,43 @@ TEST_P(Contract, SameInputGivesBitIdenticalMasksWhateverTheBuffer) {
   EXPECT_TRUE(test::identical(reused, expected));
 }
 
+// The region to ignore is given at half the frames' size and scaled to them: no mask has a
+// pixel in it, where without it the movers show. An empty region, and a reset, give back the
+// masks without one.
+TEST_P(Contract, AnIgnoredRegionNeverMovesAtAnySize) {
+  const std::vector<cv::Mat> frames = test::synthFrames(8, 5);
+  const cv::Size size = frames[0].size();
+  const cv::Rect left(0, 0, size.width / 2, size.height);
+  const std::vector<cv::Mat> expected = masksOf(frames);
+  int shown = 0;
+  for (const cv::Mat& mask : expected) shown += cv::countNonZero(mask(left));
+  ASSERT_GT(shown, 0);  // a region where nothing moves would prove nothing
+  cv::Mat region = cv::Mat::zeros(size / 2, CV_8U);
+  region(cv::Rect(0, 0, size.width / 4, size.height / 2)).setTo(1);
+  Segmenter segmenter(params());
+  segmenter.setIgnoredRegion(region);
+  for (const cv::Mat& frame : frames) {
+    const Result r = segmenter.process(frame);
+    test::expectValidResult(r, size);
+    EXPECT_EQ(cv::countNonZero(r.mask(left)), 0);
+  }
+  segmenter.setIgnoredRegion(cv::Mat());
+  segmenter.reset();
+  std::vector<cv::Mat> again;
+  for (const cv::Mat& frame : frames) again.push_back(segmenter.process(frame).mask);
+  EXPECT_TRUE(test::identical(again, expected));
+}
+
+TEST_P(Contract, RefusesAnIgnoredRegionOfAnotherType) {
+  Segmenter segmenter(params());
+  EXPECT_THROW(segmenter.setIgnoredRegion(cv::Mat::zeros(24, 32, CV_8UC3)), std::invalid_argument);
+  EXPECT_THROW(segmenter.setIgnoredRegion(cv::Mat::ones(24, 32, CV_32F)), std::invalid_argument);
+  const std::vector<cv::Mat> frames = test::synthFrames(4, 5);
+  std::vector<cv::Mat> masks;
+  for (const cv::Mat& frame : frames) masks.push_back(segmenter.process(frame).mask);
+  EXPECT_TRUE(test::identical(masks, masksOf(frames)));  // nothing was set
+}
+
 std::vector<Method> everyMethod() {
   std::vector<Method> methods;
   for (size_t m = 0; m < enumNames<Method>().size(); ++m) methods.push_back(static_cast<Method>(m));

@@ -51,6 +51,28 @@ TEST_P(Stream, GivesTheSegmentersMasksOnePushLater) {
   EXPECT_TRUE(test::identical(masks, expected));
 }
 
+// The region to ignore, set between pushes, counts from the next frame pushed on, as for
+// Segmenter; the frame pushed before it (being analysed on two threads) keeps none.
+TEST_P(Stream, AnIgnoredRegionGivesTheSegmentersMasks) {
+  const std::vector<cv::Mat> frames = test::synthFrames(8, 5);
+  cv::Mat region = cv::Mat::zeros(frames[0].size(), CV_8U);
+  region(cv::Rect(0, 0, region.cols / 2, region.rows)).setTo(255);
+  Segmenter segmenter(params());
+  StreamSegmenter stream(params(), GetParam().threads);
+  std::vector<cv::Mat> expected, masks;
+  for (size_t t = 0; t < frames.size(); ++t) {
+    if (t == 3) {
+      segmenter.setIgnoredRegion(region);
+      stream.setIgnoredRegion(region);
+    }
+    expected.push_back(segmenter.process(frames[t]).mask);
+    if (std::optional<Result> previous = stream.push(frames[t])) masks.push_back(previous->mask);
+  }
+  if (std::optional<Result> last = stream.flush()) masks.push_back(last->mask);
+  ASSERT_GT(cv::countNonZero(expected.back()), 0);  // equal empty masks would prove nothing
+  EXPECT_TRUE(test::identical(masks, expected));
+}
+
 // Each frame's mask at once, as `movseg segment` takes them on one thread: the jobs still take
 // turns (a pipeline may keep references into the previous frame's analysis).
 TEST_P(Stream, FlushingAfterEveryPushGivesTheSegmentersMasks) {

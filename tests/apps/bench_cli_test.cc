@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "test_support.h"
 
@@ -65,6 +66,22 @@ TEST(BenchCli, AccuracyDoesNotDependOnThreads) {
     EXPECT_GT(throughput.at(fps).get<double>(), 0.0) << fps;
   }
   EXPECT_FALSE(reports[0].contains("throughput"));
+}
+
+// --ignore: the whole frame ignored leaves every mask empty (J 0 where the clip has movers), and
+// the table's header says what was ignored.
+TEST(BenchCli, IgnoreAppliesToEverySequence) {
+  const test::TempDir dir;
+  ASSERT_EQ(test::runCli("synth -o " + dir / "data/s" + " --frames 6 --size 160x120").exit_code, 0);
+  ASSERT_TRUE(cv::imwrite(dir / "all.png", cv::Mat(120, 160, CV_8U, cv::Scalar(255))));
+  const test::CommandResult bench = test::runCli("bench " + dir / "data" + " --methods dense" +
+                                                 " --ignore " + dir / "all.png" + " --json " +
+                                                 dir / "bench.json");
+  ASSERT_EQ(bench.exit_code, 0) << bench.output;
+  EXPECT_NE(bench.output.find("ignoring " + dir / "all.png"), std::string::npos) << bench.output;
+  for (const auto& row : nlohmann::json::parse(std::ifstream(dir / "bench.json")).at("rows")) {
+    EXPECT_EQ(row.at("J").get<double>(), 0.0) << row.at("method");  // MOG2's too
+  }
 }
 
 TEST(BenchCli, RejectsUnknownMethodAndBadSize) {

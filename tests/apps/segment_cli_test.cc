@@ -137,6 +137,40 @@ TEST(SegmentCli, CorruptImageInAFolderIsNamed) {
   EXPECT_FALSE(fs::exists(dir / "out/00001.png"));
 }
 
+// --ignore: white where nothing moves, a JPEG's near-black ringing not ignored; the manifest
+// records it. An image that cannot be read stops the run before anything is written.
+TEST(SegmentCli, IgnoreLeavesARegionOutOfEveryMask) {
+  const test::TempDir dir;
+  const std::string frames = synthClip(dir, 6);
+  ASSERT_EQ(test::runCli("segment " + frames + " -o " + dir / "plain").exit_code, 0);
+  cv::Mat region(240, 320, CV_8U, cv::Scalar(20));  // dark but not black: not ignored
+  const cv::Rect left(0, 0, 160, 240);
+  region(left).setTo(255);
+  ASSERT_TRUE(cv::imwrite(dir / "region.png", region));
+  const test::CommandResult r =
+      test::runCli("segment " + frames + " -o " + dir / "out" + " --ignore " + dir / "region.png");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  int before = 0, after = 0;
+  for (const std::string& name : test::filesIn(dir / "out")) {
+    if (name.find(".png") == std::string::npos) continue;
+    const cv::Mat mask = cv::imread(dir / "out/" + name, cv::IMREAD_GRAYSCALE);
+    const cv::Mat plain = cv::imread(dir / "plain/" + name, cv::IMREAD_GRAYSCALE);
+    EXPECT_EQ(cv::countNonZero(mask(left)), 0) << name;
+    before += cv::countNonZero(plain(left));
+    after += cv::countNonZero(mask);
+  }
+  EXPECT_GT(before, 0);  // the region held movers
+  EXPECT_GT(after, 0);   // and the rest of the frame is still segmented
+  const nlohmann::json manifest =
+      nlohmann::json::parse(std::ifstream(dir / "out/movseg-run.json"));
+  EXPECT_EQ(manifest.at("settings").at("ignore"), dir / "region.png");
+
+  test::expectOneLineError(
+      test::runCli("segment " + frames + " -o " + dir / "none" + " --ignore " + dir / "no.png"),
+      "no.png", test::kExitRunFailed);
+  EXPECT_FALSE(fs::exists(dir / "none"));
+}
+
 TEST(SegmentCli, UnknownOptionAndBadValues) {
   const test::TempDir dir;
   const std::string frames = synthClip(dir, 2);

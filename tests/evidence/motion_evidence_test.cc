@@ -27,7 +27,7 @@ cv::Mat confirmation(const cv::Mat& grey, const cv::Mat& previous, const cv::Mat
   PhotometricCheck check;
   cv::Mat carried, confirmed;
   check.followFlow(previous, cv::Mat(), flow_map, &carried);
-  check.confirm(grey, camera_map, LevelMap(), params, &confirmed);
+  check.confirm(grey, camera_map, LevelMap(), cv::Mat(), params, &confirmed);
   return confirmed;
 }
 
@@ -116,9 +116,9 @@ TEST(PhotometricCheck, ConfirmsAMoverUnderAChangeOfLight) {
   check.followFlow(scene.previous, cv::Mat(), scene.flow_map, &carried);
   const LevelMap levels = check.fitLevels(scene.current);
   EXPECT_NEAR(levels.gain * 128 + levels.offset, 1.2 * 128, 2);  // mid-grey
-  check.confirm(scene.current, scene.camera_map, levels, Params(), &with_light);
+  check.confirm(scene.current, scene.camera_map, levels, cv::Mat(), Params(), &with_light);
   check.followFlow(scene.previous, cv::Mat(), scene.flow_map, &carried);
-  check.confirm(scene.current, scene.camera_map, LevelMap(), Params(), &without);
+  check.confirm(scene.current, scene.camera_map, LevelMap(), cv::Mat(), Params(), &without);
   EXPECT_GT(cv::mean(with_light(scene.inside))[0], 0.9);
   EXPECT_LT(cv::mean(with_light(scene.far))[0], 0.05);
   EXPECT_LT(cv::mean(without(scene.inside))[0], 0.6);
@@ -169,7 +169,7 @@ void expectOpenCvsResults(const cv::Mat& grey, const cv::Mat& previous, const cv
                           const std::string& what, PhotometricCheck* check) {
   cv::Mat carried, ours;
   check->followFlow(previous, mask, flow_map, &carried);
-  check->confirm(grey, camera_map, LevelMap(), Params(), &ours);
+  check->confirm(grey, camera_map, LevelMap(), cv::Mat(), Params(), &ours);
   const cv::Mat opencv = openCvConfirmation(grey, previous, flow_map, camera_map, Params());
   ASSERT_EQ(ours.size(), opencv.size()) << what;
   ASSERT_EQ(ours.type(), CV_32F) << what;
@@ -185,7 +185,7 @@ void expectOpenCvsResults(const cv::Mat& grey, const cv::Mat& previous, const cv
   EXPECT_EQ(cv::countNonZero(carried != opencv_carried), 0) << what;
 
   check->followFlow(previous, cv::Mat(), flow_map, &carried);
-  check->confirm(grey, camera_map, LevelMap(), Params(), &ours);
+  check->confirm(grey, camera_map, LevelMap(), cv::Mat(), Params(), &ours);
   EXPECT_TRUE(carried.empty()) << what;
   EXPECT_EQ(cv::countNonZero(ours != opencv), 0) << what << " without a mask";
 }

@@ -95,7 +95,7 @@ TEST(FlowCamera, FitsTheCameraAroundAMarkedMoverAndLeavesItsMotionAsResidual) {
   cv::RNG rng(1);
   const Params params;
   std::vector<GridSample> samples;
-  gridSamples(test::greyTexture(size, 4), params.flow_sample_step, &samples);
+  gridSamples(test::greyTexture(size, 4), params.flow_sample_step, cv::Mat(), &samples);
   const FlowCamera fit = fitFlowCamera(flow, samples, moving, params, rng);
   ASSERT_FALSE(fit.fallback);
   EXPECT_LT(cv::norm(cv::Matx33d(fit.model * (1.0 / fit.model(2, 2))) - camera), 1e-3);
@@ -130,7 +130,7 @@ TEST(FlowCamera, OfTwoEquallySupportedPlanesTheLastPairsIsKept) {
   }
   const Params params;
   std::vector<GridSample> samples;
-  gridSamples(grey, params.flow_sample_step, &samples);
+  gridSamples(grey, params.flow_sample_step, cv::Mat(), &samples);
   for (const cv::Matx33d& last : {a, b}) {
     for (const std::uint64_t seed : {1u, 2u, 3u, 4u}) {
       cv::RNG rng(seed);
@@ -156,7 +156,7 @@ bool readsDepth(const std::function<cv::Point2f(int)>& strip) {
   cv::RNG rng(1);
   const Params params;
   std::vector<GridSample> samples;
-  gridSamples(test::greyTexture(size, 4), params.flow_sample_step, &samples);
+  gridSamples(test::greyTexture(size, 4), params.flow_sample_step, cv::Mat(), &samples);
   const FlowCamera fit = fitFlowCamera(flow, samples, cv::Mat(), params, rng);
   EXPECT_FALSE(fit.fallback);
   return fit.epipole.has_value();

@@ -18,7 +18,9 @@ void toGrey(int t, cv::Mat* frame);
 
 // Mean IoU of `params`' masks against the clip's truth, over the frames after the first
 // (a frame with nothing to find and nothing found counts 1), each frame changed by `change`
-// when one is given.
-double meanIou(const SynthOptions& clip, const Params& params, const FrameChange& change = {});
+// when one is given. With an `ignored` region (Segmenter::setIgnoredRegion, of the frames'
+// size), the truth counts outside it only.
+double meanIou(const SynthOptions& clip, const Params& params, const FrameChange& change = {},
+               const cv::Mat& ignored = cv::Mat());
 
 }  // namespace movseg::test

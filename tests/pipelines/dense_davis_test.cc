@@ -7,7 +7,11 @@
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
+#include "eval/metrics.h"
+#include "movseg/segmenter.h"
 #include "test_support.h"
 
 namespace movseg {
@@ -45,6 +49,47 @@ TEST(DenseDavis, BenchGivesReadmesFigures) {
     }
   }
   EXPECT_EQ(found, 3);
+}
+
+// Mean J of `dense` on a DAVIS sequence whose frames carry `overlay` where `region` is non-zero,
+// the segmenter told to ignore `ignored` (none when empty); the region is not scored.
+double meanJWithOverlay(const std::vector<std::string>& frames, const cv::Mat& overlay,
+                        const cv::Mat& region, const cv::Mat& ignored) {
+  Segmenter segmenter(test::withMethod(Method::kDense));
+  segmenter.setIgnoredRegion(ignored);
+  double sum = 0;
+  for (size_t t = 0; t < frames.size(); ++t) {
+    cv::Mat frame = cv::imread(frames[t]);
+    overlay.copyTo(frame, region);
+    const cv::Mat mask = segmenter.process(frame).mask;
+    std::string truth = frames[t];
+    truth.replace(truth.rfind("frames"), 6, "masks").replace(truth.size() - 3, 3, "png");
+    if (t > 0) sum += scoreFrame(mask, cv::imread(truth, cv::IMREAD_GRAYSCALE), region).j;
+  }
+  return sum / static_cast<double>(frames.size() - 1);
+}
+
+// README, "Things fixed to the camera": a dash-cam's bonnet (a textured ellipse over the bottom
+// eighth) and a burnt-in timestamp pasted on car-roundabout, whose camera pans with a car. Told
+// to ignore them, `dense` finds the car as on the sequence itself: measured 0.842 (README's
+// 0.845 without them). Told nothing, 0.177: they stand still while the camera turns. With the
+// camera sampled up to the region's edge, 0.496: the flow next to it goes its way, and a still
+// region reads as depth at infinity.
+TEST(DenseDavis, ABonnetAndATimestampAreIgnoredWhenSaidSo) {
+  const std::vector<std::string> frames = test::davisFrames("car-roundabout", 1000);
+  if (frames.empty()) GTEST_SKIP() << "no DAVIS data (set MOVSEG_DATA)";
+  const cv::Size size = cv::imread(frames[0]).size();
+  cv::Mat region = cv::Mat::zeros(size, CV_8U);
+  cv::ellipse(region, {size.width / 2, size.height * 5 / 4},
+              {size.width * 2 / 3, size.height * 3 / 8}, 0, 0, 360, 255, cv::FILLED);
+  const cv::Rect timestamp(8, 8, 230, 30);
+  region(timestamp).setTo(255);
+  cv::Mat overlay = test::texture(size, 3) / 2;
+  overlay(timestamp).setTo(cv::Scalar::all(0));
+  cv::putText(overlay, "2026-11-26 12:00:00", {14, 30}, cv::FONT_HERSHEY_SIMPLEX, 0.6,
+              cv::Scalar::all(255), 2);
+  EXPECT_GE(meanJWithOverlay(frames, overlay, region, region), 0.80);
+  EXPECT_LT(meanJWithOverlay(frames, overlay, region, cv::Mat()), 0.4);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@ import subprocess
 import sys
 import time
 
+import cv2
 import numpy as np
 import pytest
 
@@ -68,10 +69,16 @@ def test_corrupt_input_fails_alone_and_reruns_skip_finished_ones(inputs, tmp_pat
     assert summary(out)["walk"]["status"] == "skipped"
 
     stamp = (out / "walk" / "summary.json").stat().st_mtime_ns
+    region = np.zeros((96, 128), np.uint8)
+    region[:, :64] = 255  # the left half, ignored
+    cv2.imwrite(str(tmp_path / "region.png"), region)
     forced = batch(str(inputs / "walk/frames"), "-o", str(out), "--workers", "2", "--force",
-                   "--method", "diff", "--set", "lk_window=15")
+                   "--method", "diff", "--set", "lk_window=15",
+                   "--ignore", str(tmp_path / "region.png"))
     assert forced.returncode == 0, forced.stdout + forced.stderr
     assert (out / "walk" / "summary.json").stat().st_mtime_ns != stamp
+    masks = read_masks(out / "walk" / "masks")
+    assert not any(mask[:, :64].any() for mask in masks) and any(mask.any() for mask in masks)
 
 
 def test_two_inputs_of_one_name_are_refused(inputs, tmp_path):

@@ -3,6 +3,7 @@ import gc
 import subprocess
 from concurrent.futures import ThreadPoolExecutor
 
+import cv2
 import numpy as np
 import pytest
 
@@ -177,3 +178,28 @@ def test_one_segmenter_shared_by_threads_does_not_crash(frames):
     with ThreadPoolExecutor(max_workers=4) as pool:
         results = list(pool.map(lambda f: segmenter.process(f.copy()), frames * 3))
     assert all(r.mask.shape == frames[0].shape[:2] for r in results)
+
+
+def test_an_ignored_region_is_the_clis(frames, clip, cli, tmp_path):
+    # A boolean array at half the frames' size (the left quarter), scaled to them; the CLI's
+    # --ignore image gives the same masks. None clears it.
+    height, width = frames[0].shape[:2]
+    region = np.zeros((height // 2, width // 2), bool)
+    region[:, : width // 8] = True
+    segmenter = movseg.Segmenter()
+    segmenter.set_ignored_region(region)
+    masks = [segmenter.process(frame).mask for frame in frames]
+    assert not any(mask[:, : width // 4].any() for mask in masks)
+    assert any(mask.any() for mask in masks)
+    image = np.zeros((height, width), np.uint8)
+    image[:, : width // 4] = 255
+    cv2.imwrite(str(tmp_path / "region.png"), image)
+    subprocess.run([cli, "segment", str(clip / "frames"), "-o", str(tmp_path / "out"), "-q",
+                    "--ignore", str(tmp_path / "region.png")], check=True, capture_output=True)
+    for index, expected in enumerate(read_masks(tmp_path / "out")):
+        assert np.array_equal(masks[index], expected), f"frame {index}"
+    segmenter.set_ignored_region(None)
+    segmenter.reset()
+    assert np.array_equal(segment(frames)[-1].mask, [segmenter.process(f) for f in frames][-1].mask)
+    with pytest.raises(ValueError, match="2-D"):
+        segmenter.set_ignored_region(np.zeros((4, 4, 3), np.uint8))
