@@ -4,15 +4,20 @@
 Usage: scripts/degrade.py DATA OUT [SEQUENCE ...]
 
 For each sequence of DATA (<sequence>/frames + <sequence>/masks; all of them when none is named)
-writes four to OUT, the masks linked, not copied:
+writes seven to OUT, the masks linked where they are unchanged:
   <sequence>-flicker  every other frame 8 % darker, the others 8 % brighter (a mains-lit lamp
                       filmed at a rate that beats with it);
   <sequence>-step     the frames from the 21st on 30 % brighter (an exposure that jumps);
   <sequence>-noise    Gaussian sensor noise of sigma 8 grey levels (a small sensor at night);
   <sequence>-repeat   every fifth frame shown twice (a frame rate padded from 24 to 30 a second,
-                      or a stream that repeats its last frame when one is dropped).
+                      or a stream that repeats its last frame when one is dropped);
+  <sequence>-letterbox  black bars of an eighth of the height above and below (a wide picture
+                      in a taller frame), the masks padded alike;
+  <sequence>-pillarbox  black bars of an eighth of the width left and right (a 4:3 picture in a
+                      16:9 frame), the masks padded alike;
+  <sequence>-third    every third frame only (a camera at 8 frames a second).
 Frames are written as JPEG at quality 95 (a repeat as the same file twice). README ("Changes of
-light", "Repeated frames") has the tables.
+light", "Repeated frames", "Black bars") has the tables.
 """
 import os
 import sys
@@ -48,6 +53,39 @@ def write_repeats(frames_in, files, masks_in, folder):
             out += 1
 
 
+def write_framed(frames_in, files, masks_in, folder, variant):
+    """The letterboxed or pillarboxed frames and their masks padded alike."""
+    for sub in ("frames", "masks"):
+        os.makedirs(os.path.join(folder, sub), exist_ok=True)
+    for file in files:
+        frame = cv2.imread(os.path.join(frames_in, file), cv2.IMREAD_COLOR)
+        stem = os.path.splitext(file)[0]
+        height, width = frame.shape[:2]
+        pad = (height // 8, height // 8, 0, 0) if variant == "letterbox" else \
+            (0, 0, width // 8, width // 8)
+        cv2.imwrite(os.path.join(folder, "frames", stem + ".jpg"),
+                    cv2.copyMakeBorder(frame, *pad, cv2.BORDER_CONSTANT, value=(0, 0, 0)),
+                    [cv2.IMWRITE_JPEG_QUALITY, 95])
+        mask = cv2.imread(os.path.join(masks_in, stem + ".png"), cv2.IMREAD_GRAYSCALE)
+        if mask is not None:
+            cv2.imwrite(os.path.join(folder, "masks", stem + ".png"),
+                        cv2.copyMakeBorder(mask, *pad, cv2.BORDER_CONSTANT, value=0))
+
+
+def write_every_third(frames_in, files, masks_in, folder):
+    """Frames 0, 3, 6, ... under their own names, each mask beside its frame (linked)."""
+    for sub in ("frames", "masks"):
+        os.makedirs(os.path.join(folder, sub), exist_ok=True)
+    for file in files[::3]:
+        stem = os.path.splitext(file)[0]
+        frame = cv2.imread(os.path.join(frames_in, file), cv2.IMREAD_COLOR)
+        cv2.imwrite(os.path.join(folder, "frames", stem + ".jpg"), frame,
+                    [cv2.IMWRITE_JPEG_QUALITY, 95])
+        link = os.path.join(folder, "masks", stem + ".png")
+        if os.path.exists(os.path.join(masks_in, stem + ".png")) and not os.path.lexists(link):
+            os.symlink(os.path.abspath(os.path.join(masks_in, stem + ".png")), link)
+
+
 def main():
     if len(sys.argv) < 3:
         sys.exit(__doc__)
@@ -61,6 +99,10 @@ def main():
         repeat = os.path.join(out, f"{name}-repeat")
         os.makedirs(os.path.join(repeat, "frames"), exist_ok=True)
         write_repeats(frames_in, files, masks_in, repeat)
+        for variant in ("letterbox", "pillarbox"):
+            write_framed(frames_in, files, masks_in, os.path.join(out, f"{name}-{variant}"),
+                         variant)
+        write_every_third(frames_in, files, masks_in, os.path.join(out, f"{name}-third"))
         for variant in ("flicker", "step", "noise"):
             rng = np.random.default_rng(1)
             folder = os.path.join(out, f"{name}-{variant}")

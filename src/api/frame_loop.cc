@@ -8,6 +8,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "core/black_bars.h"
 #include "core/timing.h"
 #include "core/work_limit.h"
 
@@ -78,7 +79,7 @@ void FrameLoop::analyse(const cv::Mat& bgr, Job* job) {
   size_ = job->size = bgr.size();
   job->pipeline = pipeline_;
   openCvChecked([&] {
-    job->analysis->ignored = ignoredAt(bgr.size());
+    job->analysis->ignored = ignoredIn(bgr, job);
     pipeline_->analyse(bgr, job->analysis.get());
   });
   job->analyse_ms = millisecondsSince(start);
@@ -135,6 +136,18 @@ const cv::Mat& FrameLoop::ignoredAt(cv::Size size) {
   cv::resize(ignored_, scaled, size, 0, 0, cv::INTER_NEAREST);
   ignored_at_size_ = scaled;
   return ignored_at_size_;
+}
+
+cv::Mat FrameLoop::ignoredIn(const cv::Mat& bgr, Job* job) {
+  const cv::Mat& named = ignoredAt(bgr.size());
+  if (!params_.black_bars) return named;
+  const cv::Rect picture = pictureInsideBlackBars(bgr);
+  if (picture.size() == bgr.size()) return named;
+  job->ignored.create(bgr.size(), CV_8U);
+  job->ignored.setTo(255);
+  job->ignored(picture).setTo(0);
+  if (!named.empty()) cv::bitwise_or(job->ignored, named, job->ignored);
+  return job->ignored;
 }
 
 // A stream runs within the work limit of its frame size (core/work_limit.h). The defaults never

@@ -28,6 +28,7 @@ class FrameLoop {
     Result result;
     cv::Size size;
     double analyse_ms = 0;
+    cv::Mat ignored;  // the ignored region with the frame's black bars, when it has some
   };
 
   std::unique_ptr<Job> newJob() const;
@@ -60,6 +61,9 @@ class FrameLoop {
   void startStream(cv::Size size);
   // The ignored region at `size`, made again only when the size or the region changes.
   const cv::Mat& ignoredAt(cv::Size size);
+  // What the analysis of `bgr` ignores: that region, and the black bars around the picture
+  // (Params::black_bars), joined in job->ignored when there are bars.
+  cv::Mat ignoredIn(const cv::Mat& bgr, Job* job);
 
   Params params_;
   // The current stream's pipeline, made with the parameters of its work limit. A new one

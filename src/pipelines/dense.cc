@@ -40,10 +40,10 @@ struct DenseAnalysis : Analysis {
   double scale = 1;                 // bgr = the frame scaled by this
   cv::Size input_size;
   cv::Mat input_grey;  // at the input's size where that is larger: the edges the outline snaps to
-  // Analysis::ignored at the working scale, or empty: no evidence, no mask. And grown by the
-  // flow's reach: the still region shapes the flow there too, which then goes the region's way
-  // (seen as depth at infinity, a car lost along its epipolar lines): no camera sample, no say
-  // in the photometric check's unit or the scene-cut test.
+  // Analysis::ignored at the working scale, or empty: no mask. And grown by the flow's reach:
+  // the still region shapes the flow there too, which then goes the region's way (seen as depth
+  // at infinity, a car lost along its epipolar lines, a line of motion along a black bar): no
+  // evidence, no camera sample, no say in the photometric check's unit or the scene-cut test.
   cv::Mat working_ignored, near_ignored;
   bool repeat = false;  // the frame equals the previous one (RepeatedFrames)
   double prepare_ms = 0, flow_ms = 0;
@@ -317,7 +317,8 @@ class DensePipeline : public Pipeline {
 
   // The pair's own evidence (evidence_): the residual in units of the background's (the scale,
   // returned), confirmed by the photometric check, none where the last mover uncovered the
-  // background, nothing either way where the region is ignored (colour learns nothing there).
+  // background, nothing either way within the flow's reach of the ignored region (colour learns
+  // nothing there).
   float pairEvidence(const DenseAnalysis& a, const DebugSink& debug) {
     photometric_.confirm(a.grey, camera_map_, levels_, a.near_ignored, params_, &confirmation_);
     sample_residuals_.reserve(a.samples.size());  // at most one per sample: they do not grow
@@ -328,7 +329,7 @@ class DensePipeline : public Pipeline {
     confirmMotion(confirmation_, &evidence_);
     const bool uncovers = !carried_.empty() && params_.uncovered;
     if (uncovers) dropUncovered(carried_, mask_, camera_map_, &evidence_);
-    if (!a.working_ignored.empty()) evidence_.setTo(0, a.working_ignored);
+    if (!a.near_ignored.empty()) evidence_.setTo(0, a.near_ignored);
     // White: background the last frame's mover uncovered (mask_ is still that frame's here).
     debug.put("uncovered", [&] {
       cv::Mat picture = cv::Mat::zeros(a.grey.size(), CV_8U);
