@@ -73,15 +73,16 @@ def write_framed(frames_in, files, masks_in, folder, variant):
 
 
 def write_every_third(frames_in, files, masks_in, folder):
-    """Frames 0, 3, 6, ... under their own names, each mask beside its frame (linked)."""
+    """Frames 0, 3, 6, ... numbered 0, 1, 2, ... as a slower camera numbers them, each mask
+    beside its frame (linked)."""
     for sub in ("frames", "masks"):
         os.makedirs(os.path.join(folder, sub), exist_ok=True)
-    for file in files[::3]:
+    for out, file in enumerate(files[::3]):
         stem = os.path.splitext(file)[0]
         frame = cv2.imread(os.path.join(frames_in, file), cv2.IMREAD_COLOR)
-        cv2.imwrite(os.path.join(folder, "frames", stem + ".jpg"), frame,
+        cv2.imwrite(os.path.join(folder, "frames", f"{out:05d}.jpg"), frame,
                     [cv2.IMWRITE_JPEG_QUALITY, 95])
-        link = os.path.join(folder, "masks", stem + ".png")
+        link = os.path.join(folder, "masks", f"{out:05d}.png")
         if os.path.exists(os.path.join(masks_in, stem + ".png")) and not os.path.lexists(link):
             os.symlink(os.path.abspath(os.path.join(masks_in, stem + ".png")), link)
 
