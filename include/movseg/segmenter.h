@@ -71,9 +71,11 @@ class Segmenter {
   // bonnet, a burnt-in timestamp or logo, a robot's own arm) stands still in the image while the
   // world moves, and would be taken for a mover. `region`: CV_8U with one channel, non-zero
   // where ignored, of any size (scaled to each frame's, nearest neighbour); empty: none. The
-  // mask is 0 there for every method; `dense` also leaves it out of the camera's fit, the
-  // residual's scale, the photometric check's unit and the scene-cut test. Throws
-  // std::invalid_argument for another type; nothing has changed then.
+  // mask is 0 there for every method; `dense` also leaves it, and a margin around it as wide
+  // as the flow's reach, out of its evidence, the camera's fit, the residual's scale, the
+  // photometric check's unit and the scene-cut test. Black bars around the picture are joined
+  // to it on every frame (Params::black_bars). Throws std::invalid_argument for another type;
+  // nothing has changed then.
   void setIgnoredRegion(const cv::Mat& region);
 
   // The previous frame warped into the last processed frame's coordinates (8-bit BGR); empty

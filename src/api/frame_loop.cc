@@ -100,7 +100,7 @@ void FrameLoop::segment(Job* job) {
     } else {
       upscaledMask(mask, job->size, &result.mask);
       const cv::Mat& ignored = job->analysis->ignored;
-      if (!ignored.empty()) result.mask.setTo(0, ignored);
+      if (!ignored.empty()) clearWhere(ignored, &result.mask);
     }
   });
   debug.put("mask", [&] { return result.mask; });
@@ -143,10 +143,17 @@ cv::Mat FrameLoop::ignoredIn(const cv::Mat& bgr, Job* job) {
   if (!params_.black_bars) return named;
   const cv::Rect picture = pictureInsideBlackBars(bgr);
   if (picture.size() == bgr.size()) return named;
+  // Row by row: Mat::setTo allocates a copy of its scalar on every call.
   job->ignored.create(bgr.size(), CV_8U);
-  job->ignored.setTo(255);
-  job->ignored(picture).setTo(0);
-  if (!named.empty()) cv::bitwise_or(job->ignored, named, job->ignored);
+  for (int y = 0; y < bgr.rows; ++y) {
+    uchar* row = job->ignored.ptr<uchar>(y);
+    const uchar* by_user = named.empty() ? nullptr : named.ptr<uchar>(y);
+    const bool picture_row = y >= picture.y && y < picture.br().y;
+    for (int x = 0; x < bgr.cols; ++x) {
+      const bool bar = !picture_row || x < picture.x || x >= picture.br().x;
+      row[x] = bar || (by_user != nullptr && by_user[x] != 0) ? 255 : 0;
+    }
+  }
   return job->ignored;
 }
 

@@ -132,6 +132,21 @@ void scaledMask(const cv::Mat& mask, cv::Size size, cv::Mat* out) {
   cv::resize(mask, *out, size, 0, 0, cv::INTER_LINEAR);
 }
 
+void clearWhere(const cv::Mat& where, cv::Mat* image) {
+  CV_Assert(where.type() == CV_8U && where.size() == image->size());
+  CV_Assert(image->type() == CV_8U || image->type() == CV_32F);
+  for (int y = 0; y < image->rows; ++y) {
+    const uchar* w = where.ptr<uchar>(y);
+    if (image->type() == CV_8U) {
+      uchar* p = image->ptr<uchar>(y);
+      for (int x = 0; x < image->cols; ++x) p[x] = w[x] != 0 ? 0 : p[x];
+    } else {
+      float* p = image->ptr<float>(y);
+      for (int x = 0; x < image->cols; ++x) p[x] = w[x] != 0 ? 0.f : p[x];
+    }
+  }
+}
+
 void upscaledMask(const cv::Mat& mask, cv::Size size, cv::Mat* out) {
   if (mask.size() == size) {
     cv::threshold(mask, *out, 127, 255, cv::THRESH_BINARY);

@@ -60,6 +60,10 @@ PreparedFrame prepareFrame(const cv::Mat& bgr, const Params& params);
 // size. *out must not be `mask`.
 void scaledMask(const cv::Mat& mask, cv::Size size, cv::Mat* out);
 
+// *image (CV_8U or CV_32F) set to 0 where `where` (CV_8U, of its size) is non-zero: what
+// Mat::setTo(0, where) does, without the copy of its scalar it allocates on every call.
+void clearWhere(const cv::Mat& where, cv::Mat* image);
+
 // scaledMask thresholded to 0/255 into *out, so that a mask computed at a working scale has
 // smooth rather than blocky boundaries at full resolution; grey levels along its outline
 // (EdgeSnap's) place it between pixels. *out must not be `mask`.

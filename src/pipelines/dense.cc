@@ -99,19 +99,32 @@ bool isSceneCutUnderCamera(const cv::Mat& bgr, const cv::Mat& previous_bgr,
   return isSceneCut(samples, covered, differing);
 }
 
-// DenseAnalysis' working_ignored and near_ignored from the frame's `ignored` (both empty when it
-// is); `reach`: the flow's (DenseFlow::reach()).
-void scaleIgnored(const cv::Mat& ignored, cv::Size size, int reach, cv::Mat* exact,
-                  cv::Mat* near) {
-  if (ignored.empty()) {
-    exact->release();
-    near->release();
-    return;
+// DenseAnalysis' working_ignored and near_ignored from each frame's `ignored`. The margin is grown
+// again only when the region changes: a region stays for a stream, and a dilation allocates its
+// filter on every call.
+class IgnoredRegion {
+ public:
+  // Both empty when `ignored` is; `reach`: the flow's (DenseFlow::reach()).
+  void scale(const cv::Mat& ignored, cv::Size size, int reach, cv::Mat* exact, cv::Mat* near) {
+    if (ignored.empty()) {
+      exact->release();
+      near->release();
+      return;
+    }
+    cv::resize(ignored, *exact, size, 0, 0, cv::INTER_NEAREST);
+    if (exact->size() == last_exact_.size() && cv::norm(*exact, last_exact_, cv::NORM_INF) == 0) {
+      last_near_.copyTo(*near);
+      return;
+    }
+    const int side = 2 * reach + 1;
+    cv::dilate(*exact, *near, cv::getStructuringElement(cv::MORPH_RECT, {side, side}));
+    exact->copyTo(last_exact_);
+    near->copyTo(last_near_);
   }
-  cv::resize(ignored, *exact, size, 0, 0, cv::INTER_NEAREST);
-  const int side = 2 * reach + 1;
-  cv::dilate(*exact, *near, cv::getStructuringElement(cv::MORPH_RECT, {side, side}));
-}
+
+ private:
+  cv::Mat last_exact_, last_near_;  // copies: the analyses' buffers are theirs
+};
 
 // The residuals at the samples the photometric check does not confirm as moving (less than
 // half confirmed): the background's, whatever the movers' share of the frame, so that the
@@ -211,7 +224,7 @@ class DensePipeline : public Pipeline {
     } else {
       a.input_grey.release();
     }
-    scaleIgnored(analysis->ignored, size, flow_.reach(), &a.working_ignored, &a.near_ignored);
+    ignored_.scale(analysis->ignored, size, flow_.reach(), &a.working_ignored, &a.near_ignored);
     gridSamples(a.grey, params_.flow_sample_step, a.near_ignored, &a.samples);
     blockContrast(a.bgr, params_.smoothness, &a.contrast);
     a.prepare_ms = millisecondsSince(start);
@@ -256,7 +269,7 @@ class DensePipeline : public Pipeline {
 
     start = Clock::now();
     cut_.cut(unary_, a.contrast, &diag.cut_nodes, &mask_);
-    if (!a.working_ignored.empty()) mask_.setTo(0, a.working_ignored);  // nor carried on
+    if (!a.working_ignored.empty()) clearWhere(a.working_ignored, &mask_);  // nor carried on
     const cv::Mat mask = edge_snap_.snap(mask_, a.grey, params_.edge_snap, a.input_grey);
     diag.cut_ms = millisecondsSince(start);
     debug.put("residual", [&] { return drawResidual(residual_, diag.residual_scale); });
@@ -329,7 +342,7 @@ class DensePipeline : public Pipeline {
     confirmMotion(confirmation_, &evidence_);
     const bool uncovers = !carried_.empty() && params_.uncovered;
     if (uncovers) dropUncovered(carried_, mask_, camera_map_, &evidence_);
-    if (!a.near_ignored.empty()) evidence_.setTo(0, a.near_ignored);
+    if (!a.near_ignored.empty()) clearWhere(a.near_ignored, &evidence_);
     // White: background the last frame's mover uncovered (mask_ is still that frame's here).
     debug.put("uncovered", [&] {
       cv::Mat picture = cv::Mat::zeros(a.grey.size(), CV_8U);
@@ -382,6 +395,7 @@ class DensePipeline : public Pipeline {
   EdgeSnap edge_snap_;
   PersistentDepth depth_;
   RepeatedFrames repeats_;  // phase 1's, as the flow
+  IgnoredRegion ignored_;   // phase 1's
   // The last fitted camera model, the next fit's warm start: a pair that fell back to the
   // identity leaves it as it was, a scene cut forgets it (a model must come from the scene it
   // is tried on).

@@ -82,15 +82,26 @@ TEST(Allocations, DenseFlowKeepsItsBuffersBetweenFrames) {
 
 // Allocations per frame of `method` on a 320x240 clip, after the first frames have sized every
 // buffer.
-double allocationsPerFrame(Method method) {
+// `framed`: the frames letterboxed (black bars found on every frame; no wider than the working
+// width, whose resizes allocate) and a timestamp's box ignored.
+double allocationsPerFrame(Method method, bool framed = false) {
   SynthOptions clip;
   clip.frames = 24;
   const SynthSequence sequence(clip);
   std::vector<cv::Mat> frames;
-  for (int t = 0; t < sequence.size(); ++t) frames.push_back(sequence.frame(t).frame);
+  for (int t = 0; t < sequence.size(); ++t) {
+    cv::Mat frame = sequence.frame(t).frame;
+    if (framed) cv::copyMakeBorder(frame, frame, 40, 40, 0, 0, cv::BORDER_CONSTANT, cv::Scalar());
+    frames.push_back(frame);
+  }
   Params params;
   params.method = method;
   Segmenter segmenter(params);
+  if (framed) {
+    cv::Mat timestamp = cv::Mat::zeros(frames[0].size(), CV_8U);
+    timestamp(cv::Rect(8, 48, 100, 12)).setTo(255);
+    segmenter.setIgnoredRegion(timestamp);
+  }
   constexpr int kWarmUp = 8;
   for (int t = 0; t < kWarmUp; ++t) segmenter.process(frames[static_cast<size_t>(t)]);
   test::CountAllocations counter;
@@ -106,6 +117,14 @@ double allocationsPerFrame(Method method) {
 TEST(Allocations, DenseMakesNoAllocationsPerFrame) {
   const double per_frame = allocationsPerFrame(Method::kDense);
   std::printf("dense: %.1f allocations per frame\n", per_frame);
+  EXPECT_EQ(per_frame, 0.0);
+}
+
+// Nor with black bars and an ignored region: the region is scaled, and its margin grown, from
+// buffers kept, the margin only when the region changes.
+TEST(Allocations, DenseWithBlackBarsAndAnIgnoredRegionMakesNoAllocationsPerFrame) {
+  const double per_frame = allocationsPerFrame(Method::kDense, true);
+  std::printf("dense, framed: %.1f allocations per frame\n", per_frame);
   EXPECT_EQ(per_frame, 0.0);
 }
 
