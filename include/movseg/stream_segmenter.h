@@ -34,7 +34,8 @@ class StreamSegmenter {
   // Forgets the stream, dropping a result not yet returned (flush() first to keep it).
   void reset();
 
-  // As Segmenter::setIgnoredRegion, from the next frame pushed on.
+  // As Segmenter::setIgnoredRegion, from the next frame pushed on. Waits for the analysis in
+  // flight first, and throws its failure as push() would (the stream then restarts).
   void setIgnoredRegion(const cv::Mat& region);
 
   const Params& params() const;
