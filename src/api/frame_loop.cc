@@ -142,7 +142,8 @@ cv::Mat FrameLoop::ignoredIn(const cv::Mat& bgr, Job* job) {
   const cv::Mat& named = ignoredAt(bgr.size());
   if (!params_.black_bars) return named;
   const cv::Rect picture = pictureInsideBlackBars(bgr);
-  if (picture.size() == bgr.size()) return named;
+  job->result.diagnostics.black_bars = picture.size() != bgr.size();
+  if (!job->result.diagnostics.black_bars) return named;
   // Row by row: Mat::setTo allocates a copy of its scalar on every call.
   job->ignored.create(bgr.size(), CV_8U);
   for (int y = 0; y < bgr.rows; ++y) {

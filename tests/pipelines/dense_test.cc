@@ -89,7 +89,9 @@ double pillarboxedIou(const SynthOptions& clip, const Params& params, int bar) {
     cv::Mat frame, truth;
     cv::copyMakeBorder(f.frame, frame, 0, 0, bar, bar, cv::BORDER_CONSTANT, cv::Scalar::all(0));
     cv::copyMakeBorder(f.mask, truth, 0, 0, bar, bar, cv::BORDER_CONSTANT, cv::Scalar(0));
-    const cv::Mat mask = segmenter.process(frame).mask;
+    const Result result = segmenter.process(frame);
+    EXPECT_EQ(result.diagnostics.black_bars, params.black_bars) << t;
+    const cv::Mat& mask = result.mask;
     if (t > 0) sum += cv::countNonZero(mask & truth) / double(cv::countNonZero(mask | truth));
   }
   return sum / (sequence.size() - 1);
