@@ -79,7 +79,7 @@ void FrameLoop::analyse(const cv::Mat& bgr, Job* job) {
   size_ = job->size = bgr.size();
   job->pipeline = pipeline_;
   openCvChecked([&] {
-    job->analysis->ignored = ignoredIn(bgr, job);
+    job->analysis->ignored = ignoredIn(bgr, &diag);
     pipeline_->analyse(bgr, job->analysis.get());
   });
   job->analyse_ms = millisecondsSince(start);
@@ -138,16 +138,18 @@ const cv::Mat& FrameLoop::ignoredAt(cv::Size size) {
   return ignored_at_size_;
 }
 
-cv::Mat FrameLoop::ignoredIn(const cv::Mat& bgr, Job* job) {
+cv::Mat FrameLoop::ignoredIn(const cv::Mat& bgr, Diagnostics* diag) {
   const cv::Mat& named = ignoredAt(bgr.size());
   if (!params_.black_bars) return named;
   const cv::Rect picture = pictureInsideBlackBars(bgr);
-  job->result.diagnostics.black_bars = picture.size() != bgr.size();
-  if (!job->result.diagnostics.black_bars) return named;
-  // Row by row: Mat::setTo allocates a copy of its scalar on every call.
-  job->ignored.create(bgr.size(), CV_8U);
+  diag->black_bars = picture.size() != bgr.size();
+  if (!diag->black_bars) return named;
+  if (with_bars_.size() == bgr.size() && picture == picture_ && named.data == joined_to_.data) {
+    return with_bars_;
+  }
+  cv::Mat joined(bgr.size(), CV_8U);  // a new buffer: the analyses hold the last one
   for (int y = 0; y < bgr.rows; ++y) {
-    uchar* row = job->ignored.ptr<uchar>(y);
+    uchar* row = joined.ptr<uchar>(y);
     const uchar* by_user = named.empty() ? nullptr : named.ptr<uchar>(y);
     const bool picture_row = y >= picture.y && y < picture.br().y;
     for (int x = 0; x < bgr.cols; ++x) {
@@ -155,7 +157,10 @@ cv::Mat FrameLoop::ignoredIn(const cv::Mat& bgr, Job* job) {
       row[x] = bar || (by_user != nullptr && by_user[x] != 0) ? 255 : 0;
     }
   }
-  return job->ignored;
+  with_bars_ = joined;
+  joined_to_ = named;
+  picture_ = picture;
+  return with_bars_;
 }
 
 // A stream runs within the work limit of its frame size (core/work_limit.h). The defaults never

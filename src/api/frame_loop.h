@@ -28,7 +28,6 @@ class FrameLoop {
     Result result;
     cv::Size size;
     double analyse_ms = 0;
-    cv::Mat ignored;  // the ignored region with the frame's black bars, when it has some
   };
 
   std::unique_ptr<Job> newJob() const;
@@ -62,8 +61,9 @@ class FrameLoop {
   // The ignored region at `size`, made again only when the size or the region changes.
   const cv::Mat& ignoredAt(cv::Size size);
   // What the analysis of `bgr` ignores: that region, and the black bars around the picture
-  // (Params::black_bars), joined in job->ignored when there are bars.
-  cv::Mat ignoredIn(const cv::Mat& bgr, Job* job);
+  // (Params::black_bars; diag->black_bars says whether there are), joined again only when the
+  // bars or the region change.
+  cv::Mat ignoredIn(const cv::Mat& bgr, Diagnostics* diag);
 
   Params params_;
   // The current stream's pipeline, made with the parameters of its work limit. A new one
@@ -76,6 +76,10 @@ class FrameLoop {
   FramePool masks_;  // of the results' masks: a caller that lets a result go gives it back
   cv::Mat ignored_;          // as the user gave it, 0 / 255; empty: none
   cv::Mat ignored_at_size_;  // scaled to the last frame's size; analyses share it, never written
+  // The last frame's bars joined to ignored_at_size_ (held, so that its buffer is not reused),
+  // inside the picture `picture_`; analyses share it, never written.
+  cv::Mat with_bars_, joined_to_;
+  cv::Rect picture_;
 };
 
 }  // namespace movseg
