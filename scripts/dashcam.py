@@ -41,7 +41,7 @@ def main():
     data, out, region_file = sys.argv[1:4]
     names = sys.argv[4:] or sorted(
         n for n in os.listdir(data) if os.path.isdir(os.path.join(data, n, "frames")))
-    region_size = None
+    overlay = None  # (picture, region, size): one region fits one frame size
     for name in names:
         frames_in = os.path.join(data, name, "frames")
         masks_in = os.path.join(data, name, "masks")
@@ -51,10 +51,12 @@ def main():
         for file in sorted(f for f in os.listdir(frames_in) if f.lower().endswith((".jpg", ".png"))):
             frame = cv2.imread(os.path.join(frames_in, file), cv2.IMREAD_COLOR)
             size = frame.shape[1::-1]
-            if region_size not in (None, size):
+            if overlay is None:
+                overlay = (*overlay_of(size), size)
+                cv2.imwrite(region_file, overlay[1])
+            picture, region, region_size = overlay
+            if size != region_size:
                 sys.exit(f"{name}: frames of {size}, others of {region_size}: one region fits one size")
-            picture, region = overlay_of(size)
-            region_size = size
             covered = region > 0
             frame[covered] = picture[covered]
             stem = os.path.splitext(file)[0]
@@ -64,7 +66,6 @@ def main():
             if mask is not None:
                 mask[covered] = 0
                 cv2.imwrite(os.path.join(folder, "masks", stem + ".png"), mask)
-        cv2.imwrite(region_file, region)
 
 
 if __name__ == "__main__":

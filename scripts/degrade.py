@@ -37,6 +37,12 @@ def degrade(frame, t, variant, rng):
     return np.clip(image + 0.5, 0, 255).astype(np.uint8)
 
 
+def link_mask(mask, link):
+    """`link` made a symbolic link to the mask file `mask`, unless it is there already."""
+    if not os.path.lexists(link):
+        os.symlink(os.path.abspath(mask), link)
+
+
 def write_repeats(frames_in, files, masks_in, folder):
     """Every fifth frame twice, each mask beside its frame (linked)."""
     os.makedirs(os.path.join(folder, "masks"), exist_ok=True)
@@ -47,9 +53,7 @@ def write_repeats(frames_in, files, masks_in, folder):
         for _ in range(2 if t % 5 == 4 else 1):
             cv2.imwrite(os.path.join(folder, "frames", f"{out:05d}.jpg"), frame,
                         [cv2.IMWRITE_JPEG_QUALITY, 95])
-            link = os.path.join(folder, "masks", f"{out:05d}.png")
-            if not os.path.lexists(link):
-                os.symlink(os.path.abspath(os.path.join(masks_in, mask)), link)
+            link_mask(os.path.join(masks_in, mask), os.path.join(folder, "masks", f"{out:05d}.png"))
             out += 1
 
 
@@ -82,9 +86,9 @@ def write_every_third(frames_in, files, masks_in, folder):
         frame = cv2.imread(os.path.join(frames_in, file), cv2.IMREAD_COLOR)
         cv2.imwrite(os.path.join(folder, "frames", f"{out:05d}.jpg"), frame,
                     [cv2.IMWRITE_JPEG_QUALITY, 95])
-        link = os.path.join(folder, "masks", f"{out:05d}.png")
-        if os.path.exists(os.path.join(masks_in, stem + ".png")) and not os.path.lexists(link):
-            os.symlink(os.path.abspath(os.path.join(masks_in, stem + ".png")), link)
+        mask = os.path.join(masks_in, stem + ".png")
+        if os.path.exists(mask):
+            link_mask(mask, os.path.join(folder, "masks", f"{out:05d}.png"))
 
 
 def main():
