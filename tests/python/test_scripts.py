@@ -96,3 +96,41 @@ def test_indep_synth_refuses_an_unknown_camera(tmp_path):
                          capture_output=True, text=True)
     assert run.returncode != 0 and "no such camera: crane" in run.stderr
     assert not any(tmp_path.iterdir())
+
+
+def synth_data(tmp_path, frames):
+    """A dataset folder holding one synthetic sequence `s` of 160x120 frames (frames/, masks/)."""
+    subprocess.run([os.environ["MOVSEG_CLI"], "synth", "-o", str(tmp_path / "data" / "s"),
+                    "--frames", str(frames), "--size", "160x120"], check=True, capture_output=True)
+    return tmp_path / "data"
+
+
+def test_dashcam_pastes_one_region_and_clears_the_masks_under_it(tmp_path):
+    import cv2
+    data = synth_data(tmp_path, 3)
+    subprocess.run([sys.executable, str(SOURCE / "scripts" / "dashcam.py"), str(data),
+                    str(tmp_path / "out"), str(tmp_path / "region.png")], check=True,
+                   capture_output=True)
+    region = cv2.imread(str(tmp_path / "region.png"), cv2.IMREAD_GRAYSCALE) > 0
+    assert region.shape == (120, 160) and 0.05 < region.mean() < 0.3
+    out = tmp_path / "out" / "s-dashcam"
+    assert len(list((out / "frames").iterdir())) == 3
+    for mask_file in (out / "masks").iterdir():
+        assert not cv2.imread(str(mask_file), cv2.IMREAD_GRAYSCALE)[region].any()
+    frames = [cv2.imread(str(p)).astype(int) for p in sorted((out / "frames").iterdir())]
+    assert abs(frames[0] - frames[2])[region].mean() < 2  # the same pixels in every frame
+
+
+def test_degrade_frames_pictures_in_bars_and_keeps_every_third_frame(tmp_path):
+    import cv2
+    data = synth_data(tmp_path, 7)
+    subprocess.run([sys.executable, str(SOURCE / "scripts" / "degrade.py"), str(data),
+                    str(tmp_path / "out")], check=True, capture_output=True)
+    out = tmp_path / "out"
+    letterbox = cv2.imread(str(out / "s-letterbox" / "frames" / "00000.jpg"))
+    pillarbox = cv2.imread(str(out / "s-pillarbox" / "masks" / "00000.png"), cv2.IMREAD_GRAYSCALE)
+    assert letterbox.shape == (150, 160, 3) and letterbox[:15].mean() < 8  # JPEG rings a little
+    assert pillarbox.shape == (120, 200) and not pillarbox[:, :20].any()
+    third = sorted(p.name for p in (out / "s-third" / "masks").iterdir())
+    assert third == ["00000.png", "00001.png", "00002.png"]  # frames 0, 3 and 6, renumbered
+    assert os.readlink(out / "s-third" / "masks" / "00002.png").endswith("00006.png")
