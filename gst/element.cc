@@ -5,6 +5,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <gst/video/video.h>
 #include <opencv2/core.hpp>
@@ -24,8 +25,9 @@ enum class Mode { kMask, kOverlay };
 
 #define MOVSEG_INPUT_FORMATS "{ BGR, BGRx, GRAY8 }"
 
-// Property ids: 0 is reserved by GObject; then `mode`, `post-messages`, and the parameters.
-enum { kPropMode = 1, kPropPostMessages, kFirstParamProp };
+// Property ids: 0 is reserved by GObject; then `mode`, `post-messages`, `ignore`, and the
+// parameters.
+enum { kPropMode = 1, kPropPostMessages, kPropIgnore, kFirstParamProp };
 
 // The element's state, a C++ object behind the GObject instance. Properties are set from the
 // application's thread while frames run on the streaming thread: `lock` guards the settings.
@@ -36,8 +38,13 @@ struct State {
   bool params_changed = true;   // the segmenter is (re)made with the settings at the next frame
   Mode mode = Mode::kMask;
   bool post_messages = true;
+  std::string ignore;                     // the `ignore` property as given
+  std::vector<cv::Rect2d> ignored;        // ... as read
+  std::string ignore_refused;             // why its last value was refused
+  bool ignore_changed = false;            // given to the segmenter at the next frame
 
   std::optional<movseg::Segmenter> segmenter;  // streaming thread only
+  cv::Size region_size;                        // the frame size the region was last drawn at
   guint64 frame = 0;
 };
 
@@ -67,12 +74,26 @@ GType modeType() {
 
 State& stateOf(gpointer object) { return *GST_MOVSEG(object)->state; }
 
+// A refused text is reported when the stream starts, as a refused parameter is; until a good
+// one replaces it the region stays as it was.
+void setIgnore(State* state, const char* text) {
+  state->ignore = text == nullptr ? "" : text;
+  try {
+    state->ignored = movseg::gst::parseIgnoredRectangles(state->ignore);
+    state->ignore_refused.clear();
+    state->ignore_changed = true;
+  } catch (const std::invalid_argument& e) {
+    state->ignore_refused = e.what();
+  }
+}
+
 void setProperty(GObject* object, guint id, const GValue* value, GParamSpec* spec) {
   State& state = stateOf(object);
   const std::lock_guard<std::mutex> lock(state.lock);
   switch (id) {
     case kPropMode: state.mode = static_cast<Mode>(g_value_get_enum(value)); return;
     case kPropPostMessages: state.post_messages = g_value_get_boolean(value); return;
+    case kPropIgnore: setIgnore(&state, g_value_get_string(value)); return;
     default: break;
   }
   if (id < kFirstParamProp || id - kFirstParamProp >= movseg::paramFields().size()) {
@@ -111,8 +132,9 @@ gboolean start(GstBaseTransform* transform) {
   state.frame = 0;
   state.segmenter.reset();
   state.params_changed = true;
-  if (state.refused.empty()) return TRUE;
-  const std::string& reason = state.refused.begin()->second;
+  if (state.refused.empty() && state.ignore_refused.empty()) return TRUE;
+  const std::string& reason =
+      state.refused.empty() ? state.ignore_refused : state.refused.begin()->second;
   GST_ELEMENT_ERROR(transform, LIBRARY, SETTINGS, ("%s", reason.c_str()), (nullptr));
   return FALSE;
 }
@@ -162,8 +184,10 @@ GstCaps* transformCaps(GstBaseTransform* transform, GstPadDirection direction, G
   return result;
 }
 
-// The segmenter with the current settings, (re)made when they changed: a new stream start.
-movseg::Segmenter* segmenterFor(GstVideoFilter* filter, Mode* mode, bool* post_messages) {
+// The segmenter with the current settings, (re)made when they changed: a new stream start. Its
+// ignored region is drawn at the frame's size, again when either changes.
+movseg::Segmenter* segmenterFor(GstVideoFilter* filter, cv::Size frame_size, Mode* mode,
+                                bool* post_messages) {
   State& state = stateOf(filter);
   const std::lock_guard<std::mutex> lock(state.lock);
   *mode = state.mode;
@@ -176,6 +200,12 @@ movseg::Segmenter* segmenterFor(GstVideoFilter* filter, Mode* mode, bool* post_m
       GST_ELEMENT_ERROR(filter, LIBRARY, SETTINGS, ("%s", e.what()), (nullptr));
       return nullptr;
     }
+    state.region_size = cv::Size();
+  }
+  if (state.ignore_changed || state.region_size != frame_size) {
+    state.ignore_changed = false;
+    state.region_size = frame_size;
+    state.segmenter->setIgnoredRegion(movseg::gst::ignoredRegion(state.ignored, frame_size));
   }
   return &*state.segmenter;
 }
@@ -193,10 +223,10 @@ cv::Mat matOf(GstVideoFrame* frame) {
 GstFlowReturn transformFrame(GstVideoFilter* filter, GstVideoFrame* in, GstVideoFrame* out) {
   Mode mode = Mode::kMask;
   bool post_messages = true;
-  movseg::Segmenter* segmenter = segmenterFor(filter, &mode, &post_messages);
+  const cv::Mat frame = matOf(in);
+  movseg::Segmenter* segmenter = segmenterFor(filter, frame.size(), &mode, &post_messages);
   if (segmenter == nullptr) return GST_FLOW_ERROR;
   State& state = stateOf(filter);
-  const cv::Mat frame = matOf(in);
   const movseg::Result result = segmenter->process(frame);
   cv::Mat output = matOf(out);
   if (mode == Mode::kMask) {
@@ -231,6 +261,14 @@ void installProperties(GObjectClass* object_class) {
                            "post each frame's diagnostics as an element message named movseg",
                            TRUE, static_cast<GParamFlags>(G_PARAM_READWRITE |
                                                           GST_PARAM_MUTABLE_PLAYING)));
+  g_object_class_install_property(
+      object_class, kPropIgnore,
+      g_param_spec_string(
+          "ignore", "ignore",
+          "what is fixed to the camera (a bonnet, a timestamp), never in the mask: rectangles "
+          "x,y,w,h in fractions of the frame, separated by ';' (\"0,0.8,1,0.2\": the bottom "
+          "fifth); empty: none",
+          "", static_cast<GParamFlags>(G_PARAM_READWRITE | GST_PARAM_MUTABLE_PLAYING)));
   movseg::gst::installParamProperties(object_class, kFirstParamProp);
 }
 

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <limits>
+#include <sstream>
+#include <stdexcept>
 #include <variant>
 #include <vector>
 
@@ -163,6 +166,48 @@ GstStructure* diagnosticsStructure(const Diagnostics& diagnostics, guint64 frame
                diagnosticValue(diagnostics, field.name));
   }
   return structure;
+}
+
+std::vector<cv::Rect2d> parseIgnoredRectangles(const std::string& text) {
+  std::vector<cv::Rect2d> rectangles;
+  std::istringstream list(text);
+  std::string item;
+  while (std::getline(list, item, ';')) {
+    if (item.find_first_not_of(" \t") == std::string::npos) continue;
+    std::istringstream numbers(item);
+    double v[4];
+    char comma[3];
+    const bool read = static_cast<bool>(numbers >> v[0] >> comma[0] >> v[1] >> comma[1] >> v[2] >>
+                                        comma[2] >> v[3]) &&
+                      (numbers >> std::ws).eof() && comma[0] == ',' && comma[1] == ',' &&
+                      comma[2] == ',';
+    // Within the frame, with a tolerance for fractions written to a few decimals.
+    constexpr double kSlack = 1e-6;
+    const bool inside = read && v[0] >= 0 && v[1] >= 0 && v[2] > 0 && v[3] > 0 &&
+                        v[0] + v[2] <= 1 + kSlack && v[1] + v[3] <= 1 + kSlack;
+    if (!inside) {
+      throw std::invalid_argument(
+          "ignore: \"" + item +
+          "\" is not x,y,w,h in fractions of the frame (w, h > 0, within it), as in "
+          "\"0,0.8,1,0.2; 0.85,0,0.15,0.06\"");
+    }
+    rectangles.emplace_back(v[0], v[1], v[2], v[3]);
+  }
+  return rectangles;
+}
+
+cv::Mat ignoredRegion(const std::vector<cv::Rect2d>& rectangles, cv::Size size) {
+  if (rectangles.empty()) return cv::Mat();
+  cv::Mat region(size, CV_8U, cv::Scalar(0));
+  const auto at = [](double fraction, int side) {
+    return std::clamp(static_cast<int>(std::lround(fraction * side)), 0, side);
+  };
+  for (const cv::Rect2d& r : rectangles) {
+    const cv::Point first(at(r.x, size.width), at(r.y, size.height));
+    const cv::Point last(at(r.x + r.width, size.width), at(r.y + r.height, size.height));
+    region(cv::Rect(first, last)).setTo(255);
+  }
+  return region;
 }
 
 }  // namespace movseg::gst

@@ -7,8 +7,10 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include <gst/gst.h>
+#include <opencv2/core.hpp>
 
 #include "movseg/params.h"
 #include "movseg/segmenter.h"
@@ -24,6 +26,16 @@ void setParamProperty(Params* params, std::size_t field, const GValue* value);
 
 // The i-th field of paramFields() as a property value.
 void getParamProperty(const Params& params, std::size_t field, GValue* value);
+
+// The `ignore` property's text: rectangles "x,y,w,h" in fractions of the frame's width and
+// height, separated by ';' ("0,0.8,1,0.2; 0.85,0,0.15,0.06": a bonnet and a timestamp), so that
+// a region fixed to the camera needs no image file, and fits any frame size; "" is none. Throws
+// std::invalid_argument naming the property when the text is not such a list.
+std::vector<cv::Rect2d> parseIgnoredRectangles(const std::string& text);
+
+// Those rectangles as Segmenter::setIgnoredRegion takes them, at `size`: 255 inside, edges
+// rounded to the nearest pixel; empty when there are none.
+cv::Mat ignoredRegion(const std::vector<cv::Rect2d>& rectangles, cv::Size size);
 
 // The structure of an element message: "movseg", the frame's number and timestamp, then every
 // diagnostic (booleans, ints, doubles; the camera model as an array of its 9 entries, row by row).

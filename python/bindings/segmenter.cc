@@ -85,14 +85,15 @@ struct Cv2Subtractor {
 // for MOG2. A Python subclass of cv2's class cannot do this: cv2 frees its objects as objects
 // the garbage collector does not track, and every instance of a Python subclass is tracked, so
 // it crashes when freed (measured: OpenCV 4.6, Python 3.11).
-py::object movingCameraSubtractor(const Params& params) {
+py::object movingCameraSubtractor(const Params& params, const py::object& ignored_region) {
+  const cv::Mat ignored = regionFromArray(ignored_region);
   py::object subtractor = py::module_::import("cv2").attr("BackgroundSubtractor")();
   PyTypeObject* type = Py_TYPE(subtractor.ptr());
   if (type->tp_basicsize != static_cast<Py_ssize_t>(sizeof(Cv2Subtractor))) {
     throw std::runtime_error("this cv2 lays out cv2.BackgroundSubtractor unlike OpenCV 4 does: "
                              "use movseg.Segmenter");
   }
-  reinterpret_cast<Cv2Subtractor*>(subtractor.ptr())->object = createMovingCameraSubtractor(params);
+  reinterpret_cast<Cv2Subtractor*>(subtractor.ptr())->object = createMovingCameraSubtractor(params, ignored);
   return subtractor;
 }
 
@@ -164,11 +165,14 @@ void bindSegmenter(py::module_& module) {
           "A copy of the parameters.");
 
   module.def("createMovingCameraSubtractor", &movingCameraSubtractor, py::arg("params") = Params(),
+             py::arg("ignored_region") = py::none(),
              "Drop-in for cv2.createBackgroundSubtractorMOG2() when the camera moves: a "
              "cv2.BackgroundSubtractor whose apply(image[, fgmask[, learningRate]]) segments the "
              "next frame (BGR, grey or BGRA, as cv2 reads them) and returns its mask, "
              "getBackgroundImage() gives the previous frame warped onto the last one and clear() "
-             "forgets the stream. learningRate is ignored. Use one per stream.");
+             "forgets the stream. learningRate is ignored. ignored_region: what is fixed to the "
+             "camera, as Segmenter.set_ignored_region takes it, for the subtractor's life. Use "
+             "one per stream.");
 }
 
 }  // namespace movseg::python

@@ -7,7 +7,10 @@ namespace {
 
 class MovingCameraSubtractor : public cv::BackgroundSubtractor {
  public:
-  explicit MovingCameraSubtractor(const Params& params) : segmenter_(params) {}
+  MovingCameraSubtractor(const Params& params, const cv::Mat& ignored_region)
+      : segmenter_(params) {
+    segmenter_.setIgnoredRegion(ignored_region);
+  }
 
   void apply(cv::InputArray image, cv::OutputArray fgmask, double /*learningRate*/) override {
     segmenter_.process(image.getMat()).mask.copyTo(fgmask);
@@ -36,8 +39,9 @@ class MovingCameraSubtractor : public cv::BackgroundSubtractor {
 
 }  // namespace
 
-cv::Ptr<cv::BackgroundSubtractor> createMovingCameraSubtractor(const Params& params) {
-  return cv::makePtr<MovingCameraSubtractor>(params);
+cv::Ptr<cv::BackgroundSubtractor> createMovingCameraSubtractor(const Params& params,
+                                                               const cv::Mat& ignored_region) {
+  return cv::makePtr<MovingCameraSubtractor>(params, ignored_region);
 }
 
 }  // namespace movseg

@@ -48,6 +48,33 @@ TEST(BackgroundSubtractor, IgnoresTheLearningRate) {
   }
 }
 
+// The region is the Segmenter's: its masks, nothing in the region (where the clip's movers do
+// show without it), and a region of another type refused when the subtractor is made.
+TEST(BackgroundSubtractor, TakesAnIgnoredRegionForItsLife) {
+  const SynthSequence sequence = shortSequence();
+  cv::Mat region(30, 40, CV_8U, cv::Scalar(0));
+  region.colRange(0, 20).setTo(255);  // the left half, at any size
+  Segmenter segmenter;
+  segmenter.setIgnoredRegion(region);
+  const cv::Ptr<cv::BackgroundSubtractor> told = createMovingCameraSubtractor(Params(), region);
+  const cv::Ptr<cv::BackgroundSubtractor> untold = createMovingCameraSubtractor();
+  int moving_in_region_untold = 0;
+  for (int t = 0; t < sequence.size(); ++t) {
+    const cv::Mat frame = sequence.frame(t).frame;
+    const cv::Mat left = cv::Mat(frame.size(), CV_8U, cv::Scalar(0));
+    left.colRange(0, frame.cols / 2).setTo(255);
+    cv::Mat mask, untold_mask;
+    told->apply(frame, mask);
+    untold->apply(frame, untold_mask);
+    EXPECT_EQ(cv::countNonZero(mask != segmenter.process(frame).mask), 0) << "frame " << t;
+    EXPECT_EQ(cv::countNonZero(mask & left), 0) << "frame " << t;
+    moving_in_region_untold += cv::countNonZero(untold_mask & left);
+  }
+  EXPECT_GT(moving_in_region_untold, 100);
+  EXPECT_THROW(createMovingCameraSubtractor(Params(), cv::Mat(4, 4, CV_32F, cv::Scalar(1))),
+               std::invalid_argument);
+}
+
 TEST(BackgroundSubtractor, RejectsEmptyFramesAndNamesItself) {
   const cv::Ptr<cv::BackgroundSubtractor> subtractor = createMovingCameraSubtractor();
   cv::Mat mask;

@@ -36,7 +36,7 @@ PY
 # gst-inspect-1.0 finds the element, with a property per parameter of the field table.
 inspect() {
   gst-inspect-1.0 movseg > "$work/inspect.txt" || fail "gst-inspect-1.0 movseg failed"
-  for name in $(parameter_names) mode post-messages; do
+  for name in $(parameter_names) mode post-messages ignore; do
     grep -q "^  $name *:" "$work/inspect.txt" || fail "no property $name"
   done
   grep -q "format: { (string)BGR, (string)BGRx, (string)GRAY8 }" "$work/inspect.txt" ||
@@ -64,6 +64,29 @@ same_masks_as_segment() {
   messages=$(grep -c 'from element "movseg0" (element): movseg, frame=(guint64)[0-9]*, timestamp=.*matches=(int)' \
     "$work/launch0.txt" || true)
   [ "$messages" -eq 10 ] || fail "$messages element messages with the diagnostics, not 10"
+}
+
+# ignore="x,y,w,h" gives the masks of `movseg segment --ignore IMAGE` with that rectangle drawn:
+# nothing in it, where the clip's movers show without it.
+ignore() {
+  "$cli" synth -o "$work/clip" --frames 10 --size 160x120 >/dev/null
+  /usr/bin/python3 -c "import cv2, numpy; r = numpy.zeros((120, 160), numpy.uint8); r[:, :80] = 255; cv2.imwrite('$work/left.png', r)"
+  "$cli" segment "$work/clip/frames" -o "$work/untold" -q
+  "$cli" segment "$work/clip/frames" -o "$work/cli" -q --ignore "$work/left.png"
+  mkdir -p "$work/gst"
+  gst-launch-1.0 -q multifilesrc location="$work/clip/frames/%05d.png" index=0 \
+    caps="image/png,framerate=25/1" ! pngdec ! videoconvert ! movseg ignore="0,0,0.5,1" ! \
+    pngenc ! multifilesink location="$work/gst/%05d.png" > "$work/launch.txt" 2>&1 ||
+    fail "pipeline failed: $(tail -3 "$work/launch.txt")"
+  same_masks "$work/cli" "$work/gst" || fail "masks differ from segment --ignore"
+  /usr/bin/python3 - "$work" <<'PY' || fail "the left half is not what the region changes"
+import sys
+from pathlib import Path
+import cv2
+work = Path(sys.argv[1])
+left = lambda d: sum(int((cv2.imread(str(f), 0)[:, :80] > 0).sum()) for f in sorted((work / d).glob("*.png")))
+assert left("gst") == 0 and left("untold") > 100, (left("gst"), left("untold"))
+PY
 }
 
 # A live source, in both modes.
@@ -94,6 +117,12 @@ refusals() {
     fail "no clear message: $(cat "$work/param.txt")"
   gst-launch-1.0 -q videotestsrc num-buffers=3 ! videoconvert ! movseg lk-window=12 lk-window=13 ! \
     fakesink > "$work/param.txt" 2>&1 || fail "a corrected value is still refused"
+  if gst-launch-1.0 videotestsrc num-buffers=3 ! videoconvert ! movseg ignore="0,0.8,1,0.3" ! \
+      fakesink > "$work/ignore.txt" 2>&1; then
+    fail "a rectangle beyond the frame was accepted"
+  fi
+  grep -q 'ignore: "0,0.8,1,0.3" is not x,y,w,h in fractions of the frame' "$work/ignore.txt" ||
+    fail "no clear message: $(cat "$work/ignore.txt")"
 }
 
 "$check"

@@ -49,3 +49,21 @@ def test_is_a_cv2_background_subtractor_whose_methods_all_run(frames):
     subtractor.clear()  # forgets the stream: the next frame is a first frame
     assert not subtractor.apply(frames[3]).any()
     assert not subtractor.empty() and subtractor.getDefaultName()
+
+
+def test_an_ignored_region_is_the_segmenters(frames):
+    region = np.zeros(frames[0].shape[:2], np.uint8)
+    region[:, : region.shape[1] // 2] = 1
+    segmenter = movseg.Segmenter()
+    segmenter.set_ignored_region(region)
+    told = movseg.createMovingCameraSubtractor(ignored_region=region)
+    untold = movseg.createMovingCameraSubtractor()
+    moving_in_region_untold = 0
+    for index, frame in enumerate(frames):
+        mask = told.apply(frame)
+        assert np.array_equal(mask, segmenter.process(frame).mask), f"frame {index}"
+        assert not mask[region > 0].any(), f"frame {index}"
+        moving_in_region_untold += np.count_nonzero(untold.apply(frame)[region > 0])
+    assert moving_in_region_untold > 100
+    with pytest.raises(ValueError, match="2-D array"):
+        movseg.createMovingCameraSubtractor(ignored_region=np.zeros((4, 4, 3)))
