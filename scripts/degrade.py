@@ -4,7 +4,7 @@
 Usage: scripts/degrade.py DATA OUT [SEQUENCE ...]
 
 For each sequence of DATA (<sequence>/frames + <sequence>/masks; all of them when none is named)
-writes seven to OUT, the masks linked where they are unchanged:
+writes eight to OUT, the masks linked where they are unchanged:
   <sequence>-flicker  every other frame 8 % darker, the others 8 % brighter (a mains-lit lamp
                       filmed at a rate that beats with it);
   <sequence>-step     the frames from the 21st on 30 % brighter (an exposure that jumps);
@@ -15,9 +15,10 @@ writes seven to OUT, the masks linked where they are unchanged:
                       in a taller frame), the masks padded alike;
   <sequence>-pillarbox  black bars of an eighth of the width left and right (a 4:3 picture in a
                       16:9 frame), the masks padded alike;
-  <sequence>-third    every third frame only (a camera at 8 frames a second).
+  <sequence>-third    every third frame only (a camera at 8 frames a second);
+  <sequence>-portrait the frames and masks turned a quarter clockwise (a phone held upright).
 Frames are written as JPEG at quality 95 (a repeat as the same file twice). README ("Changes of
-light", "Repeated frames", "Black bars") has the tables.
+light", "Repeated frames", "Black bars", "Portrait video") has the tables.
 """
 import os
 import sys
@@ -57,23 +58,28 @@ def write_repeats(frames_in, files, masks_in, folder):
             out += 1
 
 
+def reframed(image, variant):
+    """`image` letterboxed, pillarboxed (black bars of an eighth of the side) or turned."""
+    if variant == "portrait":
+        return cv2.rotate(image, cv2.ROTATE_90_CLOCKWISE)
+    height, width = image.shape[:2]
+    pad = (height // 8, height // 8, 0, 0) if variant == "letterbox" else \
+        (0, 0, width // 8, width // 8)
+    return cv2.copyMakeBorder(image, *pad, cv2.BORDER_CONSTANT, value=0)
+
+
 def write_framed(frames_in, files, masks_in, folder, variant):
-    """The letterboxed or pillarboxed frames and their masks padded alike."""
+    """The letterboxed, pillarboxed or turned frames and their masks alike."""
     for sub in ("frames", "masks"):
         os.makedirs(os.path.join(folder, sub), exist_ok=True)
     for file in files:
         frame = cv2.imread(os.path.join(frames_in, file), cv2.IMREAD_COLOR)
         stem = os.path.splitext(file)[0]
-        height, width = frame.shape[:2]
-        pad = (height // 8, height // 8, 0, 0) if variant == "letterbox" else \
-            (0, 0, width // 8, width // 8)
-        cv2.imwrite(os.path.join(folder, "frames", stem + ".jpg"),
-                    cv2.copyMakeBorder(frame, *pad, cv2.BORDER_CONSTANT, value=(0, 0, 0)),
+        cv2.imwrite(os.path.join(folder, "frames", stem + ".jpg"), reframed(frame, variant),
                     [cv2.IMWRITE_JPEG_QUALITY, 95])
         mask = cv2.imread(os.path.join(masks_in, stem + ".png"), cv2.IMREAD_GRAYSCALE)
         if mask is not None:
-            cv2.imwrite(os.path.join(folder, "masks", stem + ".png"),
-                        cv2.copyMakeBorder(mask, *pad, cv2.BORDER_CONSTANT, value=0))
+            cv2.imwrite(os.path.join(folder, "masks", stem + ".png"), reframed(mask, variant))
 
 
 def write_every_third(frames_in, files, masks_in, folder):
@@ -104,7 +110,7 @@ def main():
         repeat = os.path.join(out, f"{name}-repeat")
         os.makedirs(os.path.join(repeat, "frames"), exist_ok=True)
         write_repeats(frames_in, files, masks_in, repeat)
-        for variant in ("letterbox", "pillarbox"):
+        for variant in ("letterbox", "pillarbox", "portrait"):
             write_framed(frames_in, files, masks_in, os.path.join(out, f"{name}-{variant}"),
                          variant)
         write_every_third(frames_in, files, masks_in, os.path.join(out, f"{name}-third"))

@@ -23,7 +23,7 @@ std::string sizeText(cv::Size size) {
 void checkWorkingScales(cv::Size frame, const Params& params) {
   for (const auto& [name, width] : {std::pair<const char*, int>{"alignment_width", params.alignment_width},
                                     {"segmentation_width", params.segmentation_width}}) {
-    const cv::Size scaled = scaledSize(frame, width);
+    const cv::Size scaled = workingSize(frame, width);
     if (scaled.width >= SHRT_MAX || scaled.height >= SHRT_MAX) {
       throw std::invalid_argument("frame " + sizeText(frame) + " is too large: at " + name + " " +
                                   std::to_string(width) + " it is " + sizeText(scaled) +

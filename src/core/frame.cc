@@ -110,10 +110,16 @@ cv::Size scaledSize(cv::Size size, int width) {
   return {width, std::max(1, static_cast<int>(std::lround(size.height * scale)))};
 }
 
+cv::Size workingSize(cv::Size size, int width) {
+  if (size.height <= size.width) return scaledSize(size, width);
+  const cv::Size turned = scaledSize({size.height, size.width}, width);
+  return {turned.height, turned.width};
+}
+
 PreparedFrame prepareFrame(const cv::Mat& bgr, const Params& params) {
   PreparedFrame f;
   f.bgr = bgr;
-  const cv::Size seg_size = scaledSize(bgr.size(), params.segmentation_width);
+  const cv::Size seg_size = workingSize(bgr.size(), params.segmentation_width);
   f.seg_bgr = resizedTo(bgr, seg_size);
   f.seg_scale = static_cast<double>(seg_size.width) / bgr.cols;
   f.seg_smooth = f.seg_bgr;
@@ -121,7 +127,7 @@ PreparedFrame prepareFrame(const cv::Mat& bgr, const Params& params) {
     cv::GaussianBlur(f.seg_bgr, f.seg_smooth, cv::Size(), params.difference_blur);
   }
 
-  const cv::Size align_size = scaledSize(bgr.size(), params.alignment_width);
+  const cv::Size align_size = workingSize(bgr.size(), params.alignment_width);
   const cv::Mat& align_source = align_size == seg_size ? f.seg_bgr : bgr;
   cv::cvtColor(resizedTo(align_source, align_size), f.small_grey, cv::COLOR_BGR2GRAY);
   f.align_scale = static_cast<double>(align_size.width) / bgr.cols;

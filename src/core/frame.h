@@ -42,6 +42,12 @@ void downscale(const cv::Mat& image, cv::Size size, cv::Mat* halved, cv::Mat* ou
 // The size of `size` scaled to `width` (0 = unchanged), never upscaled, at least 1x1.
 cv::Size scaledSize(cv::Size size, int width);
 
+// A frame's working size for a working width (Params::alignment_width, segmentation_width;
+// 0 = unchanged): scaledSize of the frame held landscape, so that its longer side is `width` —
+// a portrait frame (a phone held upright) gets the pixels its landscape twin gets, not three
+// times as many.
+cv::Size workingSize(cv::Size size, int width);
+
 // A frame at the working scales of Params, computed once and used by the pair (prev, cur) and
 // the next pair.
 struct PreparedFrame {

@@ -29,11 +29,13 @@ double cutNodes(cv::Size size, int band) {
   return band == 0 ? whole : std::min(whole, 32.0 * band * (size.width + size.height));
 }
 
-// The width at which `frame` scaled from `width` (0 = native) has at most `pixels` pixels.
+// The working width (workingSize) at which `frame` scaled from `width` (0 = native) has at most
+// `pixels` pixels.
 int widthWithin(cv::Size frame, int width, double pixels) {
-  const cv::Size scaled = scaledSize(frame, width);
+  const cv::Size scaled = workingSize(frame, width);
   if (area(scaled) <= pixels) return width;
-  return std::max(1, static_cast<int>(scaled.width * std::sqrt(pixels / area(scaled))));
+  const int longer = std::max(scaled.width, scaled.height);
+  return std::max(1, static_cast<int>(longer * std::sqrt(pixels / area(scaled))));
 }
 
 // Fewer features: at most half the budget for corners, the rest for edge points (one per
@@ -59,7 +61,7 @@ void limitTracking(Params* p) {
 // the two-layer RANSAC.
 void limitTracker(cv::Size frame, Params* p) {
   p->alignment_width = widthWithin(frame, p->alignment_width, kAlignmentPixels);
-  limitFeatures(scaledSize(frame, p->alignment_width), p);
+  limitFeatures(workingSize(frame, p->alignment_width), p);
   limitTracking(p);
 }
 
@@ -92,7 +94,7 @@ WorkLimit withinWorkLimit(const Params& params, cv::Size frame) {
   Params& p = limit.params;
   // Every method works at the segmentation scale; the rest is the method's own.
   p.segmentation_width = widthWithin(frame, p.segmentation_width, kSegmentationPixels);
-  const cv::Size seg = scaledSize(frame, p.segmentation_width);
+  const cv::Size seg = workingSize(frame, p.segmentation_width);
   switch (p.method) {
     case Method::kPaper:
       limitTracker(frame, &p);

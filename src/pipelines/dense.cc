@@ -212,7 +212,7 @@ class DensePipeline : public Pipeline {
   void analyse(const cv::Mat& bgr, Analysis* analysis) override {
     auto& a = static_cast<DenseAnalysis&>(*analysis);
     Clock::time_point start = Clock::now();
-    const cv::Size size = scaledSize(bgr.size(), params_.segmentation_width);
+    const cv::Size size = workingSize(bgr.size(), params_.segmentation_width);
     a.scale = static_cast<double>(size.width) / bgr.cols;
     a.input_size = bgr.size();
     a.bgr = bgr_buffers_.take(size, CV_8UC3);

@@ -32,7 +32,7 @@ class Mog2Pipeline : public Pipeline {
 
   void analyse(const cv::Mat& bgr, Analysis* analysis) override {
     static_cast<Frame*>(analysis)->resized =
-        resizedTo(bgr, scaledSize(bgr.size(), params_.segmentation_width));
+        resizedTo(bgr, workingSize(bgr.size(), params_.segmentation_width));
   }
 
   cv::Mat segment(const Analysis& analysis, const DebugSink&, Result*) override {

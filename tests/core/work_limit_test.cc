@@ -70,6 +70,22 @@ TEST(WorkLimit, LowersTheCostliestParametersIntoEveryBudget) {
   EXPECT_EQ(p.cut_weight, 1000);
 }
 
+// A portrait frame is limited as its landscape twin is: the working scales are set by the
+// longer side (core/frame.h, workingSize).
+TEST(WorkLimit, TreatsAPortraitFrameAsItsLandscapeTwin) {
+  for (const Method method : {Method::kPaper, Method::kDense}) {
+    Params p = costliest();
+    p.method = method;
+    const Params landscape = withinWorkLimit(p, {3840, 2160}).params;
+    const Params portrait = withinWorkLimit(p, {2160, 3840}).params;
+    EXPECT_EQ(portrait.segmentation_width, landscape.segmentation_width);
+    EXPECT_EQ(portrait.alignment_width, landscape.alignment_width);
+    EXPECT_EQ(portrait.edge_cell, landscape.edge_cell);
+    EXPECT_EQ(portrait.flow_sample_step, landscape.flow_sample_step);
+    EXPECT_LT(portrait.segmentation_width, 3840);
+  }
+}
+
 // Only the method's own stages count: dense tracks no features and cuts no band, mog2 works at
 // the segmentation scale alone.
 TEST(WorkLimit, LowersOnlyWhatTheMethodUses) {

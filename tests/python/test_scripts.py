@@ -131,6 +131,9 @@ def test_degrade_frames_pictures_in_bars_and_keeps_every_third_frame(tmp_path):
     pillarbox = cv2.imread(str(out / "s-pillarbox" / "masks" / "00000.png"), cv2.IMREAD_GRAYSCALE)
     assert letterbox.shape == (150, 160, 3) and letterbox[:15].mean() < 8  # JPEG rings a little
     assert pillarbox.shape == (120, 200) and not pillarbox[:, :20].any()
+    mask = cv2.imread(str(data / "s" / "masks" / "00000.png"), cv2.IMREAD_GRAYSCALE)
+    portrait = cv2.imread(str(out / "s-portrait" / "masks" / "00000.png"), cv2.IMREAD_GRAYSCALE)
+    assert portrait.shape == (160, 120) and (portrait == mask[::-1].T).all()  # turned clockwise
     third = sorted(p.name for p in (out / "s-third" / "masks").iterdir())
     assert third == ["00000.png", "00001.png", "00002.png"]  # frames 0, 3 and 6, renumbered
     assert os.readlink(out / "s-third" / "masks" / "00002.png").endswith("00006.png")
