@@ -123,9 +123,12 @@ def test_dimensions_beyond_int_raise_value_error():
 
 
 def test_frames_beyond_the_warps_limit_raise_value_error():
-    # 10 pixels wide, never scaled up: 100000 rows at both working scales, past remap's 32766.
+    # Worked at native size: 40000 rows at both working scales, past remap's 32766.
+    native = movseg.Params(alignment_width=0, segmentation_width=0)
     with pytest.raises(ValueError, match="too large"):
-        movseg.Segmenter().process(np.zeros((100000, 10), np.uint8))
+        movseg.Segmenter(native).process(np.zeros((40000, 10), np.uint8))
+    # At the default working width a tall frame is scaled down as a wide one is.
+    assert movseg.Segmenter().process(np.zeros((40000, 10), np.uint8)).mask.shape == (40000, 10)
 
 
 def test_an_opencv_failure_raises_runtime_error():
