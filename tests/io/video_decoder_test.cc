@@ -77,6 +77,28 @@ TEST(VideoDecoder, ReportsTheContainersFrameCountAndRate) {
   EXPECT_FALSE(mkv.exactCount());
 }
 
+// A phone held upright stores landscape frames and a rotation: each frame comes out upright,
+// the stored frame turned as FFmpeg's own tools turn it. `-metadata:s:v:0 rotate=90` writes a
+// display matrix of 90 degrees counterclockwise (ffprobe: rotation=90), which `ffmpeg -i` then
+// turns counterclockwise (checked by hand; OpenCV 4.6's reader turns it the other way).
+TEST(VideoDecoder, TurnsFramesUprightAsTheStreamSays) {
+  const test::TempDir dir;
+  const std::string stored = testVideo(dir, "stored.mp4", "160x120", 5);
+  const std::string turned = dir / "turned.mp4";
+  ASSERT_TRUE(test::ffmpeg("-i " + stored + " -c copy -metadata:s:v:0 rotate=90 " + turned));
+  VideoDecoder stored_decoder(stored, {}), turned_decoder(turned, {});
+  const std::vector<cv::Mat> landscape = allFrames(stored_decoder);
+  const std::vector<cv::Mat> upright = allFrames(turned_decoder);
+  ASSERT_EQ(upright.size(), 5u);
+  ASSERT_EQ(landscape.size(), 5u);
+  for (size_t i = 0; i < upright.size(); ++i) {
+    ASSERT_EQ(upright[i].size(), cv::Size(120, 160)) << i;
+    cv::Mat expected;
+    cv::rotate(landscape[i], expected, cv::ROTATE_90_COUNTERCLOCKWISE);
+    EXPECT_EQ(cv::norm(upright[i], expected, cv::NORM_INF), 0) << i;
+  }
+}
+
 TEST(VideoDecoder, TruncationShowsAsFewerFramesThanExpected) {
   const test::TempDir dir;
   const std::string path = testVideo(dir, "a.mp4", "160x120", 50, "-movflags +faststart");
