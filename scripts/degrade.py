@@ -4,11 +4,12 @@
 Usage: scripts/degrade.py DATA OUT [SEQUENCE ...]
 
 For each sequence of DATA (<sequence>/frames + <sequence>/masks; all of them when none is named)
-writes eight to OUT, the masks linked where they are unchanged:
+writes nine to OUT, the masks linked where they are unchanged:
   <sequence>-flicker  every other frame 8 % darker, the others 8 % brighter (a mains-lit lamp
                       filmed at a rate that beats with it);
   <sequence>-step     the frames from the 21st on 30 % brighter (an exposure that jumps);
   <sequence>-noise    Gaussian sensor noise of sigma 8 grey levels (a small sensor at night);
+  <sequence>-grey     the frames in grey (a monochrome camera: infrared at night, thermal);
   <sequence>-repeat   every fifth frame shown twice (a frame rate padded from 24 to 30 a second,
                       or a stream that repeats its last frame when one is dropped);
   <sequence>-letterbox  black bars of an eighth of the height above and below (a wide picture
@@ -18,7 +19,7 @@ writes eight to OUT, the masks linked where they are unchanged:
   <sequence>-third    every third frame only (a camera at 8 frames a second);
   <sequence>-portrait the frames and masks turned a quarter clockwise (a phone held upright).
 Frames are written as JPEG at quality 95 (a repeat as the same file twice). README ("Changes of
-light", "Repeated frames", "Black bars", "Portrait video") has the tables.
+light", "Repeated frames", "Black bars", "Portrait video", "Grey video") has the tables.
 """
 import os
 import sys
@@ -28,6 +29,8 @@ import numpy as np
 
 
 def degrade(frame, t, variant, rng):
+    if variant == "grey":
+        return cv2.cvtColor(frame, cv2.COLOR_BGR2GRAY)
     image = frame.astype(np.float32)
     if variant == "flicker":
         image *= 1.08 if t % 2 else 0.92
@@ -114,7 +117,7 @@ def main():
             write_framed(frames_in, files, masks_in, os.path.join(out, f"{name}-{variant}"),
                          variant)
         write_every_third(frames_in, files, masks_in, os.path.join(out, f"{name}-third"))
-        for variant in ("flicker", "step", "noise"):
+        for variant in ("flicker", "step", "noise", "grey"):
             rng = np.random.default_rng(1)
             folder = os.path.join(out, f"{name}-{variant}")
             os.makedirs(os.path.join(folder, "frames"), exist_ok=True)

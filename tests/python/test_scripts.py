@@ -134,6 +134,8 @@ def test_degrade_frames_pictures_in_bars_and_keeps_every_third_frame(tmp_path):
     mask = cv2.imread(str(data / "s" / "masks" / "00000.png"), cv2.IMREAD_GRAYSCALE)
     portrait = cv2.imread(str(out / "s-portrait" / "masks" / "00000.png"), cv2.IMREAD_GRAYSCALE)
     assert portrait.shape == (160, 120) and (portrait == mask[::-1].T).all()  # turned clockwise
+    grey = cv2.imread(str(out / "s-grey" / "frames" / "00000.jpg"), cv2.IMREAD_UNCHANGED)
+    assert grey.shape == (120, 160)  # one channel
     third = sorted(p.name for p in (out / "s-third" / "masks").iterdir())
     assert third == ["00000.png", "00001.png", "00002.png"]  # frames 0, 3 and 6, renumbered
     assert os.readlink(out / "s-third" / "masks" / "00002.png").endswith("00006.png")
