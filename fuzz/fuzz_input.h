@@ -5,9 +5,16 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 
 namespace movseg::fuzz {
+
+// A promise of movseg's that a scenario broke: std::logic_error naming it, which the scenario
+// functions let out (a finding), apart from the exceptions movseg throws by contract.
+inline void require(bool ok, const std::string& broken_promise) {
+  if (!ok) throw std::logic_error(broken_promise);
+}
 
 class FuzzInput {
  public:

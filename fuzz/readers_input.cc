@@ -23,10 +23,6 @@ constexpr int kMaxSegmentedPixels = 256 * 256;
 constexpr int kMaxFiles = 6;
 constexpr int kMaxFileBytes = 4096;
 
-void require(bool ok, const std::string& broken_promise) {
-  if (!ok) throw std::logic_error(broken_promise);
-}
-
 struct Layout {
   std::string masks;   // relative to the sequence folder
   std::string frames;  // plain ground truth has none: "frames" is then just another folder

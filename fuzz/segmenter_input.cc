@@ -21,10 +21,6 @@ namespace {
 constexpr int kMaxSide = 96;
 constexpr int kMaxFrames = 8;
 
-void require(bool ok, const std::string& broken_promise) {
-  if (!ok) throw std::logic_error(broken_promise);
-}
-
 // The scale parameters' interesting values: native size, degenerate, small and the default.
 int fuzzedWidth(FuzzInput& in) {
   static const int kWidths[] = {0, 1, 2, 8, 17, 48, 320};

@@ -5,18 +5,15 @@
 #include <memory>
 #include <stdexcept>
 
+#include "fuzz_input.h"
 #include "io/frame_source.h"
 #include "movseg/segmenter.h"
 
 namespace movseg::fuzz {
 namespace {
 
-constexpr int kMaxFrames = 8;
+constexpr int kMaxFramesRead = 8;
 constexpr std::int64_t kMaxPixels = 1 << 20;  // a header may claim any size
-
-void require(bool condition, const char* promise) {
-  if (!condition) throw std::logic_error(promise);
-}
 
 }  // namespace
 
@@ -31,7 +28,7 @@ void runVideoInput(const std::uint8_t* data, std::size_t size, const std::string
   }
   Segmenter segmenter;
   cv::Mat frame;
-  for (int i = 0; i < kMaxFrames; ++i) {
+  for (int i = 0; i < kMaxFramesRead; ++i) {
     bool got = false;
     try {
       got = source->read(&frame);

@@ -10,8 +10,6 @@
 namespace movseg {
 namespace {
 
-constexpr double kDegree = CV_PI / 180;
-
 // How much of each motion a camera mode has (1 = the full range of the mode of that name).
 struct MotionMix {
   double pan = 0;

@@ -7,7 +7,6 @@
 namespace movseg {
 namespace {
 
-constexpr double kDegree = CV_PI / 180;
 // The rest focal length at 320x240: turning by one pixel's angle there moves the frame centre by
 // a pixel, which is how the plane's pan and shake, in pixels, become angles here.
 constexpr double kFocalAt320 = 0.9 * 320;

@@ -34,6 +34,9 @@ inline cv::RNG synthRng(std::uint64_t seed, SynthStream stream, std::uint64_t in
       splitMix64(splitMix64(splitMix64(seed) ^ static_cast<std::uint64_t>(stream)) ^ index));
 }
 
+// The camera paths' angles are drawn in degrees.
+constexpr double kDegree = CV_PI / 180;
+
 // amplitude * sin(2π t / period + phase): the smooth, bounded motions of the generator.
 struct Wave {
   double amplitude = 0;
