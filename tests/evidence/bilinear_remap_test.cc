@@ -13,6 +13,7 @@
 
 #include "flow/dense_flow.h"
 #include "flow/flow_camera.h"
+#include "evidence/random_image.h"
 #include "test_support.h"
 
 namespace movseg {
@@ -58,12 +59,6 @@ void expectOpenCvsRemap(const cv::Mat& image, const cv::Mat& map, int border,
 
 void expectOpenCvsRemap(const cv::Mat& image, const cv::Mat& map, const std::string& what) {
   for (const int border : kBorders) expectOpenCvsRemap(image, map, border, what);
-}
-
-cv::Mat randomImage(cv::Size size, uint64 seed, int low = 0, int high = 256) {
-  cv::Mat image(size, CV_8U);
-  cv::RNG(seed).fill(image, cv::RNG::UNIFORM, low, high);
-  return image;
 }
 
 // Pixels that are 0 or 255 only: the largest differences within a neighbourhood, where a weight

@@ -9,6 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "evidence/random_image.h"
 #include "test_support.h"
 
 namespace movseg {
@@ -28,12 +29,6 @@ void expectOpenCvsMean(const cv::Mat& image, const std::string& what) {
   ASSERT_EQ(ours.size(), opencv.size()) << what;
   ASSERT_EQ(ours.type(), opencv.type()) << what;
   EXPECT_EQ(cv::countNonZero(ours != opencv), 0) << what;
-}
-
-cv::Mat randomImage(cv::Size size, uint64 seed, int low = 0, int high = 256) {
-  cv::Mat image(size, CV_8U);
-  cv::RNG(seed).fill(image, cv::RNG::UNIFORM, low, high);
-  return image;
 }
 
 // Every sum a 5x5 window of bytes can have, 0 to 25 x 255, at the centre of a 5x5 image (the

@@ -1,4 +1,5 @@
-// Checks shared by the tests of both synthetic scenes (synth_test.cc, synth_depth_test.cc).
+// What the tests of the synthetic scenes share (synth_test.cc, synth_depth_test.cc,
+// synth_depth_camera_test.cc).
 #pragma once
 
 #include <vector>
@@ -9,6 +10,11 @@
 #include "synth/synth.h"
 
 namespace movseg {
+
+// Every camera of the 3-D scene (SynthScene::kDepth); the plane has the first six.
+constexpr SynthCamera kAllCameras[] = {
+    SynthCamera::kPan,    SynthCamera::kZoom, SynthCamera::kRotate, SynthCamera::kShake,
+    SynthCamera::kStatic, SynthCamera::kMix,  SynthCamera::kDolly,  SynthCamera::kForward};
 
 inline bool sameBytes(const cv::Mat& a, const cv::Mat& b) {
   return a.size() == b.size() && a.type() == b.type() && cv::norm(a, b, cv::NORM_INF) == 0;

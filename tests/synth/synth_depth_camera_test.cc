@@ -7,13 +7,10 @@
 
 #include "synth/depth_camera.h"
 #include "synth/random.h"
+#include "synth/synth_checks.h"
 
 namespace movseg {
 namespace {
-
-constexpr SynthCamera kAllCameras[] = {
-    SynthCamera::kPan,    SynthCamera::kZoom, SynthCamera::kRotate, SynthCamera::kShake,
-    SynthCamera::kStatic, SynthCamera::kMix,  SynthCamera::kDolly,  SynthCamera::kForward};
 
 const cv::Size kSize(320, 240);
 

@@ -19,10 +19,6 @@
 namespace movseg {
 namespace {
 
-constexpr SynthCamera kAllCameras[] = {
-    SynthCamera::kPan,    SynthCamera::kZoom, SynthCamera::kRotate, SynthCamera::kShake,
-    SynthCamera::kStatic, SynthCamera::kMix,  SynthCamera::kDolly,  SynthCamera::kForward};
-
 SynthOptions depthOptions(SynthCamera camera, int frames, std::uint64_t seed) {
   SynthOptions options;
   options.scene = SynthScene::kDepth;
