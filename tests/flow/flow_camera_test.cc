@@ -142,16 +142,14 @@ TEST(FlowCamera, OfTwoEquallySupportedPlanesTheLastPairsIsKept) {
   }
 }
 
-// A camera moving sideways: the far wall's flow (current -> previous) is 2 px to the right, and
-// the lowest 30 % of the rows, a strip too small to show depth everywhere (under 28 cells), move
-// `strip(y)`. Returns the fit's reading of depth.
-bool readsDepth(const std::function<cv::Point2f(int)>& strip) {
-  const cv::Size size(160, 120);
-  const int strip_top = 84;
+// The fit's reading of depth from a flow field (current -> previous) of `size`, given per pixel.
+bool readsDepth(cv::Size size, const std::function<cv::Point2f(int x, int y)>& flow_at) {
   cv::Mat flow(size, CV_32FC2);
   for (int y = 0; y < size.height; ++y) {
-    const cv::Point2f f = y < strip_top ? cv::Point2f(2, 0) : strip(y - strip_top);
-    for (int x = 0; x < size.width; ++x) flow.at<cv::Vec2f>(y, x) = cv::Vec2f(f.x, f.y);
+    for (int x = 0; x < size.width; ++x) {
+      const cv::Point2f f = flow_at(x, y);
+      flow.at<cv::Vec2f>(y, x) = cv::Vec2f(f.x, f.y);
+    }
   }
   cv::RNG rng(1);
   const Params params;
@@ -160,6 +158,37 @@ bool readsDepth(const std::function<cv::Point2f(int)>& strip) {
   const FlowCamera fit = fitFlowCamera(flow, samples, cv::Mat(), params, rng);
   EXPECT_FALSE(fit.fallback);
   return fit.epipole.has_value();
+}
+
+// A camera moving sideways: the far wall's flow is 2 px to the right, and the lowest 30 % of
+// the rows of a 160x120 view, a strip too small to show depth everywhere (under 28 cells), move
+// `strip(y)`.
+bool readsDepth(const std::function<cv::Point2f(int)>& strip) {
+  constexpr int kStripTop = 84;
+  return readsDepth({160, 120}, [&](int, int y) {
+    return y < kStripTop ? cv::Point2f(2, 0) : strip(y - kStripTop);
+  });
+}
+
+// The same wall in a 320x240 view with three near posts 8 px wide from top to bottom, post i
+// moving `post(i)`: about 7 % of the samples (under the tenth of kDepthWithThePlane), over 24
+// cells.
+bool readsDepthOfPosts(const std::function<cv::Point2f(int)>& post) {
+  return readsDepth({320, 240}, [&](int x, int) {
+    const bool on_post = x % 100 >= 50 && x % 100 < 58;
+    return on_post ? post(x / 100) : cv::Point2f(2, 0);
+  });
+}
+
+// Posts that all move with the plane, only further, agree on the epipole: depth, though they
+// are few.
+TEST(FlowCamera, AFewNearPostsThatAgreeAreDepth) {
+  EXPECT_TRUE(readsDepthOfPosts([](int) { return cv::Point2f(4, 0); }));
+}
+
+// As few posts whose motions point two ways (two of three agree): too few, agreeing too little.
+TEST(FlowCamera, AFewNearPostsThatDisagreeAreNotDepth) {
+  EXPECT_FALSE(readsDepthOfPosts([](int i) { return cv::Point2f(4, i == 1 ? -1.5f : 1.5f); }));
 }
 
 // Near ground below the wall moves with it, only further the nearer (parallax 1.5 to 4.3 px):
