@@ -11,9 +11,9 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "evidence/random_image.h"
 #include "flow/dense_flow.h"
 #include "flow/flow_camera.h"
-#include "evidence/random_image.h"
 #include "test_support.h"
 
 namespace movseg {

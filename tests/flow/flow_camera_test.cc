@@ -163,7 +163,7 @@ bool readsDepth(cv::Size size, const std::function<cv::Point2f(int x, int y)>& f
 // A camera moving sideways: the far wall's flow is 2 px to the right, and the lowest 30 % of
 // the rows of a 160x120 view, a strip too small to show depth everywhere (under 28 cells), move
 // `strip(y)`.
-bool readsDepth(const std::function<cv::Point2f(int)>& strip) {
+bool readsDepthOfStrip(const std::function<cv::Point2f(int)>& strip) {
   constexpr int kStripTop = 84;
   return readsDepth({160, 120}, [&](int, int y) {
     return y < kStripTop ? cv::Point2f(2, 0) : strip(y - kStripTop);
@@ -194,13 +194,13 @@ TEST(FlowCamera, AFewNearPostsThatDisagreeAreNotDepth) {
 // Near ground below the wall moves with it, only further the nearer (parallax 1.5 to 4.3 px):
 // depth, read although it covers little of the view.
 TEST(FlowCamera, NearGroundMovingWithThePlaneIsDepth) {
-  EXPECT_TRUE(readsDepth([](int row) { return cv::Point2f(3.5f + 0.08f * row, 0); }));
+  EXPECT_TRUE(readsDepthOfStrip([](int row) { return cv::Point2f(3.5f + 0.08f * row, 0); }));
 }
 
 // The same strip standing still in the image — a mover the camera follows — moves against the
 // plane: not depth, however well its motion agrees on an epipole.
 TEST(FlowCamera, AMoverTheCameraFollowsIsNotDepth) {
-  EXPECT_FALSE(readsDepth([](int) { return cv::Point2f(0, 0); }));
+  EXPECT_FALSE(readsDepthOfStrip([](int) { return cv::Point2f(0, 0); }));
 }
 
 }  // namespace
