@@ -85,6 +85,38 @@ std::string cpuModel() {
   return "unknown CPU";
 }
 
+// The folder the runs write their masks in, removed however the bench ends (a failed sequence,
+// a signal): what stays in /tmp after a bench is only its report.
+class ScratchFolder {
+ public:
+  ScratchFolder() : path_(fs::temp_directory_path() / ("movseg-bench-" + pid())) {}
+  ~ScratchFolder() {
+    std::error_code error;
+    fs::remove_all(path_, error);
+  }
+  ScratchFolder(const ScratchFolder&) = delete;
+  ScratchFolder& operator=(const ScratchFolder&) = delete;
+  std::string path() const { return path_.string(); }
+
+ private:
+  static std::string pid() { return std::to_string(::getpid()); }
+  fs::path path_;
+};
+
+// Thrown out of the runs once SIGINT or SIGTERM stopped one (StopOnSignal): the bench ends
+// without a table, which would compare cut-short runs with whole ones.
+struct Interrupted : std::runtime_error {
+  Interrupted() : std::runtime_error("interrupted") {}
+};
+
+// runSegmentation, ended by Interrupted when a signal stopped it or came before it began.
+SegmentSummary runUnlessInterrupted(const SegmentOptions& segment) {
+  if (StopOnSignal::stopped()) throw Interrupted();
+  const SegmentSummary summary = runSegmentation(segment);
+  if (summary.interrupted) throw Interrupted();
+  return summary;
+}
+
 // A run of `method` on `sequence`, its masks written under `scratch`.
 SegmentOptions runOptions(const GtSequence& sequence, const std::string& method,
                           const BenchOptions& options, const std::string& scratch) {
@@ -103,7 +135,7 @@ BenchRow benchOne(const GtSequence& sequence, const std::string& method, const B
                   const std::string& scratch) {
   const SegmentOptions segment = runOptions(sequence, method, options, scratch);
   const long faults = minorFaults();
-  const SegmentSummary summary = runSegmentation(segment);
+  const SegmentSummary summary = runUnlessInterrupted(segment);
   const double faults_per_frame =
       static_cast<double>(minorFaults() - faults) / std::max(summary.frames, 1);
   const SequenceScore score = scoreSequence(sequence, segment.output_dir);
@@ -192,7 +224,7 @@ double framesPerSecond(const std::vector<GtSequence>& sequences, const std::stri
   runConcurrently(sequences.size(), streams, [&](size_t i) {
     SegmentOptions segment = runOptions(sequences[i], method, options, scratch);
     segment.threads = stream_threads;
-    frames += runSegmentation(segment).frames;
+    frames += runUnlessInterrupted(segment).frames;
   });
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -241,35 +273,53 @@ std::vector<BenchRow> benchAll(const std::vector<GtSequence>& sequences,
   Progress progress("bench", static_cast<int>(rows.size()), false, "runs");
   std::mutex progress_mutex;
   int done = 0;
-  runConcurrently(rows.size(), options.threads, [&](size_t i) {
-    rows[i] = benchOne(sequences[i / methods.size()], methods[i % methods.size()], options, scratch);
-    const std::lock_guard<std::mutex> lock(progress_mutex);
-    progress.update(++done);
-  });
+  try {
+    runConcurrently(rows.size(), options.threads, [&](size_t i) {
+      rows[i] =
+          benchOne(sequences[i / methods.size()], methods[i % methods.size()], options, scratch);
+      const std::lock_guard<std::mutex> lock(progress_mutex);
+      progress.update(++done);
+    });
+  } catch (...) {
+    progress.finish();  // the error's line starts a line of its own
+    throw;
+  }
   progress.finish();
   return rows;
 }
 
 void runBench(const BenchOptions& options) {
+  // One for the whole bench, from its start: a signal before or between runs is not lost.
+  const StopOnSignal stop_on_signal;
   options.params.check();
+  // What cannot be written fails now, not after the whole bench.
+  for (const std::string& report : {options.json_file, options.html_file}) {
+    if (!report.empty()) checkOutputFile(report);
+  }
   const std::vector<GtSequence> sequences = loadGroundTruth(options.data, GtFormat::kAuto);
   for (const GtSequence& s : sequences) {
     if (s.frames_dir.empty()) {
       throw std::runtime_error("sequence '" + s.name + "' has no frames folder to segment");
     }
   }
-  const std::string scratch =
-      (fs::temp_directory_path() / ("movseg-bench-" + std::to_string(::getpid()))).string();
   std::vector<std::string> methods = options.methods;
   if (std::find(methods.begin(), methods.end(), kReference) == methods.end()) {
     methods.push_back(kReference);
   }
-  std::vector<BenchRow> rows = benchAll(sequences, methods, options, scratch);
+  std::vector<BenchRow> rows;
   std::optional<Throughput> throughput;
-  if (options.threads > 1) {
-    throughput = measureThroughput(sequences, methods.front(), options, scratch);
+  {
+    const ScratchFolder scratch;
+    try {
+      rows = benchAll(sequences, methods, options, scratch.path());
+      if (options.threads > 1) {
+        throughput = measureThroughput(sequences, methods.front(), options, scratch.path());
+      }
+    } catch (const Interrupted&) {
+      std::cerr << "movseg: interrupted; no table written\n";
+      throw CLI::RuntimeError(kExitInterrupted);
+    }
   }
-  fs::remove_all(scratch);
   std::vector<BenchRow> means = meanRows(rows, methods);
   compareWithReference(&rows);
   compareWithReference(&means);
@@ -332,7 +382,8 @@ void addBenchCommand(CLI::App& app) {
   cmd->add_option("--html", options->html_file,
                   "Write a report page: the table, charts of J, each sequence's worst frames");
   addParamsOptions(cmd, &options->params, {"method"});
-  cmd->callback([options] {
+  cmd->callback([options, cmd] {
+    refuseEmptyNames(*cmd, {"--json", "--html", "--ignore"});
     if (!options->size.empty()) options->resize = benchSize(options->size);
     runBench(*options);
   });

@@ -1,8 +1,14 @@
 #include "commands.h"
 
+#include <filesystem>
 #include <regex>
+#include <vector>
+
+#include "io/atomic_write.h"
 
 namespace movseg::cli {
+
+namespace fs = std::filesystem;
 
 cv::Size parseSize(const std::string& option, const std::string& text) {
   // Six digits at most: std::stoi cannot overflow, and no frame side has more.
@@ -12,6 +18,35 @@ cv::Size parseSize(const std::string& option, const std::string& text) {
     throw UsageError(option + " must be WIDTHxHEIGHT, e.g. 320x240 (got '" + text + "')");
   }
   return {std::stoi(match[1]), std::stoi(match[2])};
+}
+
+void refuseEmptyNames(const CLI::App& command, std::initializer_list<const char*> options) {
+  for (const char* name : options) {
+    for (const std::string& value : command.get_option(name)->results()) {
+      if (value.empty()) throw UsageError(std::string(name) + ": the name is empty");
+    }
+  }
+}
+
+void claimSequenceFolder(const std::string& dir, bool overwrite,
+                         std::initializer_list<const char*> owned_folders) {
+  std::error_code error;
+  if (fs::is_directory(dir, error) && !fs::is_empty(dir, error)) {
+    if (!overwrite) {
+      throw UsageError("'" + dir +
+                       "' is not empty; --overwrite replaces the frames, masks and "
+                       "camera.jsonl of a sequence there");
+    }
+    std::vector<fs::path> folders{fs::path(dir) / "frames", fs::path(dir) / "masks"};
+    for (const char* folder : owned_folders) folders.push_back(fs::path(dir) / folder);
+    for (const fs::path& folder : folders) {
+      for (const auto& entry : fs::directory_iterator(folder, error)) {
+        if (isFrameFileName(entry.path().string())) fs::remove(entry.path());
+      }
+    }
+    fs::remove(fs::path(dir) / "camera.jsonl");
+    fs::remove(fs::path(dir) / "poses.jsonl");
+  }
 }
 
 }  // namespace movseg::cli

@@ -3,6 +3,7 @@
 // for a command line that cannot be run as given, anything else for a run that failed.
 #pragma once
 
+#include <initializer_list>
 #include <stdexcept>
 #include <string>
 
@@ -41,6 +42,24 @@ inline std::string oneLine(std::string text) {
   for (char& c : text) c = c == '\n' || c == '\r' ? ' ' : c;
   return text;
 }
+
+// Refuses each of `options` of `command` given an empty value (`--json ''`, `-o ''`): an empty
+// name would otherwise mean "none", or the current folder, without a word. Throws UsageError
+// "--json: the name is empty".
+void refuseEmptyNames(const CLI::App& command, std::initializer_list<const char*> options);
+
+// Claims the folder `dir` for a synthetic sequence (`synth`, `demo`). A folder
+// that holds anything is refused unless `overwrite`, which first removes what such a sequence
+// writes there (the numbered pictures of frames/, masks/ and of `owned_folders`, camera.jsonl,
+// poses.jsonl): a shorter sequence leaves no frame of a longer one behind, and a dataset named
+// by mistake is not mixed with synthetic frames.
+void claimSequenceFolder(const std::string& dir, bool overwrite,
+                         std::initializer_list<const char*> owned_folders = {});
+
+// The help of --overwrite for `synth` and `demo`.
+constexpr char kOverwriteSequenceHelp[] =
+    "Replace the frames, masks and camera.jsonl of an earlier sequence in the folder (else a "
+    "folder that holds files is refused)";
 
 void addSegmentCommand(CLI::App& app);
 void addSynthCommand(CLI::App& app);

@@ -20,11 +20,13 @@ namespace fs = std::filesystem;
 
 struct DemoOptions {
   std::string dir = (fs::temp_directory_path() / "movseg-demo").string();
+  bool overwrite = false;  // true for the default folder: the demo's own, each run replaces it
   SynthOptions synth;
   Params params;
 };
 
 void runDemo(const DemoOptions& options) {
+  claimSequenceFolder(options.dir, options.overwrite, {"overlay"});
   writeSynthSequence(options.dir, options.synth);
   std::cout << "demo: wrote " << options.synth.frames << " synthetic frames ("
             << options.synth.size.width << "x" << options.synth.size.height << ", camera "
@@ -36,7 +38,7 @@ void runDemo(const DemoOptions& options) {
   segment.output_dir = (fs::path(options.dir) / "segmented").string();
   segment.overlay = (fs::path(options.dir) / "overlay").string();
   segment.params = options.params;
-  segment.overwrite = true;  // the demo's folder is its own: each run replaces the last
+  segment.overwrite = true;  // the folder is the demo's, claimed above
   const SegmentSummary summary = runSegmentation(segment);
   std::cout << "segment: " << describeSummary(summary) << "\n";
 
@@ -56,15 +58,30 @@ void addDemoCommand(CLI::App& app) {
   options->synth.frames = 90;
   CLI::App* cmd = app.add_subcommand(
       "demo", "Generate a synthetic moving-camera clip, segment it, print the result");
-  cmd->add_option("-o,--output", options->dir, "Folder for the clip, masks and overlays")
+  cmd->add_option(
+         "-o,--output", options->dir,
+         "Folder for the clip, masks and overlays (the default one is replaced on each run)")
       ->capture_default_str();
-  cmd->add_option("--frames", options->synth.frames, "Frames of the clip")->capture_default_str();
+  cmd->add_flag("--overwrite", options->overwrite, kOverwriteSequenceHelp);
+  cmd->add_option("--frames", options->synth.frames,
+                  "Frames of the clip, at least 2 (the first has no motion to score)")
+      ->capture_default_str();
   cmd->add_option("--clip-seed", options->synth.seed, "Seed of the synthetic clip")
       ->check(kNotNegative)
       ->capture_default_str();
   addParamsOptions(cmd, &options->params);
-  cmd->callback([options] {
-    interpretOptions([&] { checkSynthOptions(options->synth); });
+  cmd->callback([options, cmd] {
+    refuseEmptyNames(*cmd, {"-o"});
+    interpretOptions([&] {
+      checkSynthOptions(options->synth);
+      if (options->synth.frames < 2) {
+        throw std::invalid_argument(
+            "--frames must be at least 2: the first frame has no motion "
+            "and is not scored (got " +
+            std::to_string(options->synth.frames) + ")");
+      }
+    });
+    if (cmd->count("-o") == 0) options->overwrite = true;
     runDemo(*options);
   });
 }

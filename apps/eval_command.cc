@@ -12,6 +12,7 @@
 #include "eval/dataset.h"
 #include "html_report.h"
 #include "io/atomic_write.h"
+#include "segment_run.h"
 
 namespace movseg::cli {
 namespace {
@@ -92,7 +93,23 @@ void writeReport(const EvalOptions& options, const std::vector<GtSequence>& sequ
                   runs);
 }
 
+// The report files: none inside PRED or GT, where it could replace a mask, and each one
+// writable before the scoring rather than after it.
+void checkReportPaths(const EvalOptions& options) {
+  const std::pair<const char*, std::string> reports[] = {
+      {"--json", options.json_file}, {"--csv", options.csv_file}, {"--html", options.html_file}};
+  for (const auto& [option, path] : reports) {
+    for (const std::string& input : {options.pred, options.gt}) {
+      refuseWritingIntoInput(option, path, input, input);
+    }
+  }
+  for (const auto& [option, path] : reports) {
+    if (!path.empty()) checkOutputFile(path);
+  }
+}
+
 void runEval(const EvalOptions& options) {
+  checkReportPaths(options);
   std::error_code error;
   if (!std::filesystem::is_directory(options.pred, error)) {
     throw std::runtime_error("prediction folder '" + options.pred + "' does not exist");
@@ -132,7 +149,10 @@ void addEvalCommand(CLI::App& app) {
                   "Write a report page: the table, charts of J, each sequence's worst frames");
   cmd->add_option("--csv", options->csv_file,
                   "Per-frame scores: sequence,frame,J,F,error_rate,precision,recall,f1");
-  cmd->callback([options] { runEval(*options); });
+  cmd->callback([options, cmd] {
+    refuseEmptyNames(*cmd, {"--json", "--csv", "--html"});
+    runEval(*options);
+  });
 }
 
 }  // namespace movseg::cli

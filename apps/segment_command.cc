@@ -118,9 +118,9 @@ void addSegmentCommand(CLI::App& app) {
   cmd->add_flag("-q,--quiet", options->quiet, "No progress bar and no summary");
   addParamsOptions(cmd, &options->params);
   cmd->callback([options, inputs, threads, cmd, timeout] {
-    if (cmd->count("--stats") > 0 && options->stats_file.empty()) {
-      throw UsageError("--stats: the file name is empty");
-    }
+    refuseEmptyNames(*cmd, {"--stats", "--ignore"});
+    // CLI11's range lets NaN through (every comparison with it is false); it would wait forever.
+    if (std::isnan(*timeout)) throw UsageError("--timeout: nan is not a number of seconds");
     const bool several = inputs->size() > 1;
     if (cmd->count("--overlay") > 0 && options->overlay.empty()) {
       options->overlay = several ? "overlay" : options->output_dir + "/overlay";

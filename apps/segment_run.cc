@@ -46,39 +46,11 @@ constexpr char kManifestName[] = "movseg-run.json";
 std::atomic<bool> g_stop{false};
 extern "C" void onSignal(int) { g_stop = true; }
 
-// SIGINT / SIGTERM end the run after the current frame (a blocking read of a stream gives up at
-// once); what was written stays complete. Runs at once (several inputs, bench --threads) and a
-// batch around them share one installation: the first scope clears the flag and installs the
-// handlers, the last restores the previous ones.
-class StopOnSignal {
- public:
-  StopOnSignal() {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    if (scopes_++ > 0) return;
-    g_stop = false;
-    previous_int_ = std::signal(SIGINT, onSignal);
-    previous_term_ = std::signal(SIGTERM, onSignal);
-  }
-  ~StopOnSignal() {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    if (--scopes_ > 0) return;
-    std::signal(SIGINT, previous_int_);
-    std::signal(SIGTERM, previous_term_);
-  }
-
- private:
-  static inline std::mutex mutex_;
-  static inline int scopes_ = 0;
-  static inline void (*previous_int_)(int) = nullptr;
-  static inline void (*previous_term_)(int) = nullptr;
-};
-
-// A name frameFileName() gives: five or more digits, ".png".
-bool isFrameName(const fs::path& path) {
-  const std::string stem = path.stem().string();
-  return path.extension() == ".png" && stem.size() >= 5 &&
-         std::all_of(stem.begin(), stem.end(), [](unsigned char c) { return std::isdigit(c); });
-}
+// StopOnSignal's installation, shared by every scope.
+std::mutex g_signal_mutex;
+int g_signal_scopes = 0;
+void (*g_previous_int)(int) = nullptr;
+void (*g_previous_term)(int) = nullptr;
 
 bool isVideoPath(const std::string& path) {
   const std::string ext = lowercase(fs::path(path).extension().string());
@@ -106,10 +78,7 @@ void checkOutputPaths(const SegmentOptions& options) {
   const std::pair<const char*, std::string> outputs[] = {
       {"-o", options.output_dir}, {"--stats", options.stats_file}, {"--overlay", options.overlay}};
   for (const auto& [option, path] : outputs) {
-    if (!path.empty() && !input.empty() && isSameOrInside(path, input)) {
-      throw UsageError(std::string(option) + " '" + path + "' would write into the input '" +
-                       options.input + "'");
-    }
+    refuseWritingIntoInput(option, path, options.input, input);
   }
   const fs::path overlay(options.overlay);
   std::error_code error;
@@ -123,8 +92,8 @@ void checkOutputPaths(const SegmentOptions& options) {
 // The region of Segmenter::setIgnoredRegion drawn as an image: white (above 127) where nothing
 // moves, as the masks movseg writes; a JPEG's ringing around it stays black.
 cv::Mat readIgnoredRegion(const std::string& path) {
-  cv::Mat region = cv::imread(path, cv::IMREAD_GRAYSCALE);
-  if (region.empty()) throw std::runtime_error("--ignore " + path + ": cannot read it as an image");
+  cv::Mat region = decodeImage(path, cv::IMREAD_GRAYSCALE);  // a frame's check, and its words
+  if (region.empty()) throw std::runtime_error("--ignore: cannot decode image '" + path + "'");
   cv::threshold(region, region, 127, 255, cv::THRESH_BINARY);
   return region;
 }
@@ -155,7 +124,7 @@ void claimOutputFolder(const SegmentOptions& options) {
   for (const fs::path& folder : {dir, dir / "overlay"}) {
     std::error_code error;
     for (const auto& entry : fs::directory_iterator(folder, error)) {
-      if (isFrameName(entry.path())) previous.push_back(entry.path());
+      if (isFrameFileName(entry.path().string())) previous.push_back(entry.path());
     }
   }
   if (previous.empty() && !fs::exists(manifest)) return;
@@ -520,6 +489,30 @@ class ResultWriter {
 
 }  // namespace
 
+void refuseWritingIntoInput(const std::string& option, const std::string& path,
+                            const std::string& input, const std::string& input_path) {
+  if (!path.empty() && !input_path.empty() && isSameOrInside(path, input_path)) {
+    throw UsageError(option + " '" + path + "' would write into the input '" + input + "'");
+  }
+}
+
+StopOnSignal::StopOnSignal() {
+  const std::lock_guard<std::mutex> lock(g_signal_mutex);
+  if (g_signal_scopes++ > 0) return;
+  g_stop = false;
+  g_previous_int = std::signal(SIGINT, onSignal);
+  g_previous_term = std::signal(SIGTERM, onSignal);
+}
+
+StopOnSignal::~StopOnSignal() {
+  const std::lock_guard<std::mutex> lock(g_signal_mutex);
+  if (--g_signal_scopes > 0) return;
+  std::signal(SIGINT, g_previous_int);
+  std::signal(SIGTERM, g_previous_term);
+}
+
+bool StopOnSignal::stopped() { return g_stop; }
+
 bool SegmentSummary::truncated() const {
   if (interrupted || reached_max_frames || source.expected_frames < 0) return false;
   const int tolerance = source.exact_count ? 0 : static_cast<int>(std::ceil(source.fps));
@@ -662,10 +655,7 @@ std::vector<SegmentOptions> perInputRuns(const SegmentOptions& shared,
       throw UsageError("'" + named[name] + "' and '" + input + "' would both write " +
                        (fs::path(shared.output_dir) / name).string() + ": rename one");
     }
-    const std::string path = inputPath(input);
-    if (!path.empty() && isSameOrInside(shared.output_dir, path)) {
-      throw UsageError("-o '" + shared.output_dir + "' would write into the input '" + input + "'");
-    }
+    refuseWritingIntoInput("-o", shared.output_dir, input, inputPath(input));
     SegmentOptions run = shared;
     run.input = input;
     run.output_dir = (fs::path(shared.output_dir) / name).string();

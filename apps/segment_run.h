@@ -61,6 +61,26 @@ struct SegmentSummary {
 // files written before a failure stay complete under their final names.
 SegmentSummary runSegmentation(const SegmentOptions& options);
 
+// While one lives, SIGINT and SIGTERM end runSegmentation after the current frame (a blocking
+// read of a stream gives up at once) and it returns, interrupted; what was written stays
+// complete. Scopes nest: runs at once (several inputs, bench --threads) and a batch around them
+// share one installation. The first scope clears the stop and installs the handlers, the last
+// restores the previous ones; a signal between two runs of a batch is so not lost.
+class StopOnSignal {
+ public:
+  StopOnSignal();
+  ~StopOnSignal();
+  StopOnSignal(const StopOnSignal&) = delete;
+  StopOnSignal& operator=(const StopOnSignal&) = delete;
+  static bool stopped();  // a signal came since the first scope began
+};
+
+// Throws UsageError "OPTION 'PATH' would write into the input 'INPUT'" when `path` is
+// `input_path` (the file or folder on disk that `input` names, as inputPath() gives it) or lies
+// inside it, once both are made absolute and normal. Empty names are not checked.
+void refuseWritingIntoInput(const std::string& option, const std::string& path,
+                            const std::string& input, const std::string& input_path);
+
 // One run per element of `runs`, as runSegmentation does, `threads` runs at a time, each on one
 // thread; a run that fails ends alone. `ended` is called as each run ends, one call at a time.
 // After SIGINT or SIGTERM the runs in progress stop after their current frame and no run

@@ -20,6 +20,7 @@ struct SynthCommandOptions {
   std::string camera = "mix";
   std::string scene = "plane";
   std::string object_speed = "1-6";
+  bool overwrite = false;
   SynthOptions synth;
 };
 
@@ -80,7 +81,9 @@ void addSynthCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--camouflage", synth.camouflage,
                 "Texture the objects like the background: only their motion gives them away");
-  cmd->callback([options] {
+  cmd->add_flag("--overwrite", options->overwrite, kOverwriteSequenceHelp);
+  cmd->callback([options, cmd] {
+    refuseEmptyNames(*cmd, {"-o"});
     interpretOptions([&] {
       options->synth.size = parseSize("--size", options->size);
       options->synth.camera = parseSynthCamera(options->camera);
@@ -89,6 +92,7 @@ void addSynthCommand(CLI::App& app) {
           parseSpeedRange(options->object_speed);
       checkSynthOptions(options->synth);
     });
+    claimSequenceFolder(options->output_dir, options->overwrite);
     writeSynthSequence(options->output_dir, options->synth);
     std::cout << "synth: " << describe(options->synth, options->output_dir) << "\n";
   });

@@ -30,8 +30,8 @@ make_set() {  # NAME SEED OPTIONS...
   local name=$1 seed=$2
   shift 2
   [[ ${#seeds[@]} -eq 1 ]] || name="$name-s$seed"
-  "$bin" synth -o "$out/$name" --frames "${FRAMES:-60}" --size 320x240 --seed "$seed" "$@" \
-    >/dev/null
+  "$bin" synth -o "$out/$name" --overwrite --frames "${FRAMES:-60}" --size 320x240 \
+    --seed "$seed" "$@" >/dev/null
   echo "$out/$name"
 }
 

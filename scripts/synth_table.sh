@@ -9,7 +9,7 @@ shift || true
 bin=${MOVSEG:-build/movseg}
 for size in 320x240 640x480; do
   for camera in pan zoom rotate shake static; do
-    "$bin" synth -o "$out/$size/$camera" --size "$size" --camera "$camera" --frames 60 \
+    "$bin" synth -o "$out/$size/$camera" --overwrite --size "$size" --camera "$camera" --frames 60 \
       --seed 7 >/dev/null
   done
   echo "== $size"

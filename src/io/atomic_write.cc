@@ -3,6 +3,8 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -14,6 +16,7 @@
 
 namespace movseg {
 namespace {
+namespace fs = std::filesystem;
 
 std::runtime_error writeError(const std::string& path, int error) {
   return std::runtime_error("cannot write '" + path + "': " + std::strerror(error));
@@ -31,33 +34,78 @@ int writeAll(int fd, const char* data, size_t size) {
   return 0;
 }
 
-void renameOver(const std::string& temporary, const std::string& path) {
+// Renames `temporary` over `target`, the file a write to `path` goes to.
+void renameOver(const std::string& temporary, const std::string& target, const std::string& path) {
   std::error_code error;
-  std::filesystem::rename(temporary, path, error);
+  fs::rename(temporary, target, error);
   if (error) {
     std::remove(temporary.c_str());
     throw std::runtime_error("cannot write '" + path + "': " + error.message());
   }
 }
 
-void writeBytesAtomic(const std::string& path, const char* data, size_t size) {
-  const std::string temporary = path + ".part";
-  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+// Where a write to a path goes.
+struct Target {
+  std::string path;       // the path, or the file a symlink there points to (through every link)
+  bool in_place = false;  // an existing device or FIFO: written directly, never renamed over
+};
+
+// A folder is refused here: renaming a file over it would fail only once the work is done.
+Target resolveTarget(const std::string& path) {
+  std::error_code error;
+  fs::path target = path;
+  for (int links = 0; links < 40 && fs::is_symlink(target, error); ++links) {
+    const fs::path link = fs::read_symlink(target, error);
+    target = link.is_absolute() ? link : target.parent_path() / link;
+  }
+  const fs::file_status status = fs::status(target, error);
+  if (fs::is_directory(status)) throw writeError(path, EISDIR);
+  return {target.string(), fs::exists(status) && !fs::is_regular_file(status)};
+}
+
+// Opens an existing device or FIFO for writing. A FIFO without a reader is refused at once
+// (ENXIO) rather than waited for: a blocked open() would not even end on SIGINT.
+int openInPlace(const Target& target, const std::string& path) {
+  const int fd = ::open(target.path.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0 && errno == ENXIO) {
+    throw std::runtime_error("cannot write '" + path + "': no process reads the FIFO");
+  }
   if (fd < 0) throw writeError(path, errno);
+  // Writes then wait for a slow reader, as they would for a file on a slow disk.
+  ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+  return fd;
+}
+
+// Writes all of `data` to `fd` and closes it; the errno of the failure, or 0.
+int writeAndClose(int fd, const char* data, size_t size) {
   int error = writeAll(fd, data, size);
   if (::close(fd) != 0 && error == 0) error = errno;
+  return error;
+}
+
+void writeBytesAtomic(const std::string& path, const char* data, size_t size) {
+  const Target target = resolveTarget(path);
+  if (target.in_place) {
+    const int error = writeAndClose(openInPlace(target, path), data, size);
+    if (error != 0) throw writeError(path, error);
+    return;
+  }
+  const std::string temporary = target.path + ".part";
+  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw writeError(path, errno);
+  const int error = writeAndClose(fd, data, size);
   if (error != 0) {
     std::remove(temporary.c_str());
     throw writeError(path, error);
   }
-  renameOver(temporary, path);
+  renameOver(temporary, target.path, path);
 }
 
 }  // namespace
 
 void writeImageAtomic(const std::string& path, const cv::Mat& image) {
   std::vector<uchar> bytes;
-  const std::string ext = std::filesystem::path(path).extension().string();
+  const std::string ext = fs::path(path).extension().string();
   bool encoded = false;
   try {
     encoded = cv::imencode(ext.empty() ? ".png" : ext, image, bytes);
@@ -71,10 +119,20 @@ void writeTextAtomic(const std::string& path, const std::string& text) {
   writeBytesAtomic(path, text.data(), text.size());
 }
 
+void checkOutputFile(const std::string& path) {
+  const Target target = resolveTarget(path);
+  if (target.in_place) return;  // opening a FIFO to try it would give its reader an end of file
+  const std::string temporary = target.path + ".part";
+  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) throw writeError(path, errno);
+  ::close(fd);
+  std::remove(temporary.c_str());
+}
+
 void makeOutputFolder(const std::string& path) {
   std::error_code error;
-  std::filesystem::create_directories(path, error);
-  if (error || !std::filesystem::is_directory(path)) {
+  fs::create_directories(path, error);
+  if (error || !fs::is_directory(path)) {
     throw std::runtime_error("cannot create output folder '" + path + "'" +
                              (error ? ": " + error.message() : ""));
   }
@@ -86,8 +144,22 @@ std::string frameFileName(int index) {
   return name;
 }
 
+bool isFrameFileName(const std::string& name) {
+  const fs::path path(name);
+  const std::string stem = path.stem().string();
+  return path.extension() == ".png" && stem.size() >= 5 &&
+         std::all_of(stem.begin(), stem.end(), [](unsigned char c) { return std::isdigit(c); });
+}
+
 LineFile::LineFile(std::string path) : path_(std::move(path)) {
-  fd_ = ::open((path_ + ".part").c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  const Target target = resolveTarget(path_);
+  target_ = target.path;
+  in_place_ = target.in_place;
+  if (in_place_) {
+    fd_ = openInPlace(target, path_);
+    return;
+  }
+  fd_ = ::open((target_ + ".part").c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd_ < 0) throw writeError(path_, errno);
 }
 
@@ -110,7 +182,7 @@ void LineFile::close() {
   const int fd = fd_;
   fd_ = -1;
   if (::close(fd) != 0) throw writeError(path_, errno);
-  renameOver(path_ + ".part", path_);
+  if (!in_place_) renameOver(target_ + ".part", target_, path_);
 }
 
 }  // namespace movseg

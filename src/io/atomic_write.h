@@ -1,6 +1,9 @@
 // Output files appear whole or not at all: written to a temporary name beside the target, then
 // renamed over it (rename is atomic on POSIX), so an interrupted run never leaves half a file.
 // Every write is checked: a full disk or a file-size limit is an error naming the file.
+// A symlink is followed: the file it points to is replaced, not the link. A target that exists
+// and is neither a file nor a folder (a device such as /dev/null, a FIFO) is written in place:
+// renaming a file over it would replace the node itself, for everyone who uses it.
 #pragma once
 
 #include <string>
@@ -15,6 +18,11 @@ void writeImageAtomic(const std::string& path, const cv::Mat& image);
 
 void writeTextAtomic(const std::string& path, const std::string& text);
 
+// Throws the std::runtime_error "cannot write 'PATH': ..." that writing PATH would end with (a
+// folder in its place, a parent that is not a writable folder), for checking an output before
+// the work that makes it. Creates and removes PATH's temporary file to find out.
+void checkOutputFile(const std::string& path);
+
 // Creates the folder `path` and its parents. Throws std::runtime_error "cannot create output
 // folder ..." when it cannot (a file in the way, no permission).
 void makeOutputFolder(const std::string& path);
@@ -23,11 +31,15 @@ void makeOutputFolder(const std::string& path);
 // 00001.png, ..., more digits from 100000 on.
 std::string frameFileName(int index);
 
-// A text file grown line by line under PATH.part and renamed to PATH by close(). It holds whole
-// lines only: a line that cannot be written completely is cut off again and append() throws.
+// Whether `name` (a file name or a path) is one frameFileName() gives: five or more digits, .png.
+bool isFrameFileName(const std::string& name);
+
+// A text file grown line by line under PATH.part and renamed to PATH by close() (a device or FIFO
+// is written in place, as above). It holds whole lines only: a line that cannot be written
+// completely is cut off again and append() throws.
 class LineFile {
  public:
-  // Throws std::runtime_error when PATH.part cannot be created.
+  // Throws std::runtime_error when PATH.part cannot be created or PATH is a folder.
   explicit LineFile(std::string path);
   ~LineFile();  // closes the file descriptor; PATH.part stays when close() was not called
   LineFile(const LineFile&) = delete;
@@ -37,7 +49,9 @@ class LineFile {
   void close();                          // renames PATH.part to PATH; throws when it cannot
 
  private:
-  std::string path_;
+  std::string path_;       // as given, for messages
+  std::string target_;     // where the lines go: PATH, or the file a symlink PATH points to
+  bool in_place_ = false;  // target_ is a device or FIFO, written directly
   int fd_ = -1;
   long long size_ = 0;  // bytes of whole lines written
 };

@@ -21,7 +21,7 @@ struct SourceReport {
   double fps = 0;             // the frame rate it says it runs at; 0 when it does not say
   int decode_errors = 0;      // errors the decoder reported so far
   std::string last_error;     // the last one, in one line
-  bool timed_out = false;     // the last read() gave up at the timeout
+  bool timed_out = false;     // a read() gave up at the timeout: the stream stalled
 };
 
 class FrameSource {

@@ -132,7 +132,9 @@ void VideoDecoder::open(const std::string& url) {
 
 bool VideoDecoder::read(cv::Mat* bgr) {
   const FfmpegCall call(this);
-  timed_out_ = false;
+  // timed_out_ stays set once a read hit the deadline: FFmpeg's I/O is dead from then on, and a
+  // demuxer such as MPEG-TS first hands out the packets it buffered and then reports an end of
+  // file, which would pass for the stream's end.
   restartDeadline();
   for (;;) {
     const int r = avcodec_receive_frame(ff_->codec, ff_->frame);

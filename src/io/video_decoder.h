@@ -49,6 +49,7 @@ class VideoDecoder {
   // marked corrupt), and the last one's text.
   int errors() const { return errors_; }
   const std::string& lastError() const { return last_error_; }
+  // A read gave up at the deadline: the stream stalled, and whatever ended it after is no end.
   bool timedOut() const { return timed_out_; }
 
   // Called by FFmpeg: its messages and its polls for giving up.

@@ -1,8 +1,10 @@
 // The field tables (movseg/params.def, movseg/diagnostics.def) and what is generated from them:
 // Params::check(), setParam's parsing, the names and docs every binding shows.
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -90,16 +92,25 @@ TEST(Fields, CheckRejectsEveryFieldOutsideItsRangeByName) {
   EXPECT_GT(cases, 60);
 }
 
+// Integers, reals (NaN and infinities too: "nan", "inf", "-inf") and choices, each as text.
 TEST(Fields, SetParamRejectsWhatCheckRejectsAndNamesTheField) {
+  std::set<FieldType> types;
   for (const FieldInfo& field : paramFields()) {
-    if (field.type != FieldType::kInt) continue;
     for (double value : outsideRange(field)) {
       Params p;
-      const std::string text = std::to_string(static_cast<long long>(value));
-      const std::string message = rejection([&] { setParam(&p, field.name, text); });
-      EXPECT_EQ(message.rfind("invalid parameter: " + field.name + " must be", 0), 0u) << message;
+      std::ostringstream text;
+      if (field.type == FieldType::kReal) {
+        text << std::setprecision(17) << value;
+      } else {  // an integer, or a choice's index past the last (not a name)
+        text << static_cast<long long>(value);
+      }
+      const std::string message = rejection([&] { setParam(&p, field.name, text.str()); });
+      EXPECT_EQ(message.rfind("invalid parameter: " + field.name + " must be", 0), 0u)
+          << field.name << " = " << text.str() << ": " << message;
+      types.insert(field.type);
     }
   }
+  EXPECT_EQ(types, (std::set<FieldType>{FieldType::kInt, FieldType::kReal, FieldType::kChoice}));
   Params p;
   EXPECT_NE(rejection([&] { setParam(&p, "lk_window", "4"); }).find("odd"), std::string::npos);
   EXPECT_NE(rejection([&] { setParam(&p, "lambda", "abc"); }).find("a number"), std::string::npos);

@@ -1,5 +1,7 @@
 // `movseg bench` end to end, and the ranking it must keep: on a synthetic moving-camera clip the
 // paper's method beats plain MOG2 (which cannot follow a moving camera) by a clear margin.
+#include <sys/wait.h>
+
 #include <filesystem>
 #include <fstream>
 
@@ -95,6 +97,22 @@ TEST(BenchCli, RejectsUnknownMethodAndBadSize) {
     test::expectOneLineError(test::runCli("bench " + dir / "data" + " --size " + size), "--size",
                              test::kExitUsage);
   }
+}
+
+// The masks of a bench's runs go to /tmp/movseg-bench-<pid>, removed also when a sequence fails.
+TEST(BenchCli, ASequenceThatFailsLeavesNoScratchFolder) {
+  const test::TempDir dir;
+  ASSERT_EQ(test::runCli("synth -o " + dir / "data/s" + " --frames 6 --size 96x72").exit_code, 0);
+  std::ofstream(dir / "data/s/frames/00003.png", std::ios::trunc);  // zero bytes: undecodable
+  const pid_t pid = test::startCli({"bench", dir / "data", "--methods", "diff"}, dir / "log.txt");
+  ASSERT_GT(pid, 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), test::kExitRunFailed);
+  const std::string scratch =
+      (std::filesystem::temp_directory_path() / ("movseg-bench-" + std::to_string(pid))).string();
+  EXPECT_FALSE(std::filesystem::exists(scratch)) << scratch;
 }
 
 TEST(DemoCli, SegmentsTheSyntheticClipAndPrintsItsAccuracy) {

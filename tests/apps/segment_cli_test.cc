@@ -171,6 +171,21 @@ TEST(SegmentCli, IgnoreLeavesARegionOutOfEveryMask) {
   EXPECT_FALSE(fs::exists(dir / "none"));
 }
 
+// An --ignore image whose header claims more pixels than OpenCV decodes is refused as such a
+// frame is, in our words rather than OpenCV's exception text.
+TEST(SegmentCli, IgnoreImageWithAHugeHeaderIsACleanDecodeError) {
+  const test::TempDir dir;
+  const std::string frames = synthClip(dir, 2);
+  std::ofstream(dir / "huge.pgm", std::ios::binary) << "P5\n2000000 1\n255\n"
+                                                    << std::string(16, '\x7f');
+  const test::CommandResult r =
+      test::runCli("segment " + frames + " -o " + dir / "out" + " --ignore " + dir / "huge.pgm");
+  test::expectOneLineError(r, "cannot decode image '" + dir / "huge.pgm" + "'",
+                           test::kExitRunFailed);
+  EXPECT_EQ(r.output.find("OpenCV"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "out/00000.png"));
+}
+
 TEST(SegmentCli, UnknownOptionAndBadValues) {
   const test::TempDir dir;
   const std::string frames = synthClip(dir, 2);
@@ -214,6 +229,19 @@ TEST(SegmentCli, MixedFrameTypesAndSizesAreAccepted) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("1 size resets"), std::string::npos) << r.output;
   EXPECT_EQ(cv::imread(dir / "out/00004.png", cv::IMREAD_UNCHANGED).size(), cv::Size(160, 120));
+  // The converted frames gave masks of their own size, and only the size change restarted.
+  for (const char* name : {"00001.png", "00002.png", "00003.png"}) {
+    const cv::Mat mask = cv::imread(dir / "out/" + name, cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(mask.type(), CV_8UC1) << name;
+    EXPECT_EQ(mask.size(), cv::Size(320, 240)) << name;
+    EXPECT_EQ(cv::countNonZero((mask != 0) & (mask != 255)), 0) << name;
+  }
+  std::ifstream stats(dir / "s.jsonl");
+  std::vector<bool> resets;
+  for (std::string line; std::getline(stats, line);) {
+    resets.push_back(nlohmann::json::parse(line).at("reset").get<bool>());
+  }
+  EXPECT_EQ(resets, (std::vector<bool>{false, false, false, false, true}));
 }
 
 // --threads 2 on one input: the next frame is analysed while this one is cut; the same masks.

@@ -9,6 +9,8 @@
 #include <mutex>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
@@ -127,14 +129,29 @@ TEST(SegmentRuns, EveryTaskRunsOnceAndTheFirstErrorStopsTheRest) {
 
   for (const int threads : {1, 2}) {
     std::atomic<int> started{0};
+    std::vector<std::atomic<int>> runs(50);
+    std::vector<std::thread::id> ran_on(50);  // each written by the one call of its index
     EXPECT_THROW(runConcurrently(50, threads,
                                  [&](size_t i) {
                                    ++started;
+                                   ++runs[i];
+                                   ran_on[i] = std::this_thread::get_id();
                                    if (i == 3) throw std::runtime_error("task 3");
                                  }),
                  std::runtime_error);
     if (threads == 1) {
-      EXPECT_EQ(started, 4);  // on more, others may have started meanwhile
+      EXPECT_EQ(started, 4);
+    }
+    // On more threads, calls taken by the others before they saw the error may still start, as
+    // many as the timing allows (not even "fewer than 50" is certain). What is certain: no call
+    // runs twice, and the thread whose call threw starts no further one; each thread takes the
+    // calls in order, so none of a higher index.
+    EXPECT_EQ(runs[3], 1);
+    for (size_t i = 0; i < runs.size(); ++i) {
+      EXPECT_LE(runs[i], 1) << i;
+      if (i > 3 && runs[i] == 1) {
+        EXPECT_NE(ran_on[i], ran_on[3]) << threads << " threads: call " << i;
+      }
     }
   }
   runConcurrently(0, 4, [](size_t) { FAIL(); });

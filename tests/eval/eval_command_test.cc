@@ -85,13 +85,25 @@ TEST(EvalCli, DatasetLayoutScoresEverySequence) {
       writeImage(dir / ("pred/" + name), file, rectMask(kSize, kSquare));
     }
   }
-  const test::CommandResult run =
-      test::runCli("eval '" + (dir / "pred") + "' '" + (dir / "gt") + "'");
+  const test::CommandResult run = test::runCli("eval '" + (dir / "pred") + "' '" + (dir / "gt") +
+                                               "' --json '" + (dir / "s.json") + "'");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_NE(run.output.find("2 davis sequences"), std::string::npos) << run.output;
   EXPECT_NE(run.output.find("\none "), std::string::npos) << run.output;
   EXPECT_NE(run.output.find("\ntwo "), std::string::npos) << run.output;
   EXPECT_NE(run.output.find("\nmean "), std::string::npos) << run.output;
+  // The predictions are the truth: each sequence scores 1, over its one counted frame.
+  const nlohmann::json report = nlohmann::json::parse(readFile(dir / "s.json"));
+  const nlohmann::json& sequences = report.at("sequences");
+  ASSERT_EQ(sequences.size(), 2u);
+  for (size_t i = 0; i < sequences.size(); ++i) {
+    const nlohmann::json& sequence = sequences.at(i);
+    EXPECT_EQ(sequence.at("name"), i == 0 ? "one" : "two");
+    EXPECT_EQ(sequence.at("frames"), 1) << i;
+    EXPECT_EQ(sequence.at("J").get<double>(), 1.0) << i;
+    EXPECT_EQ(sequence.at("F").get<double>(), 1.0) << i;
+  }
+  EXPECT_EQ(report.at("mean").at("J").get<double>(), 1.0);
 }
 
 TEST(EvalCli, NoPredictionsAtAllFails) {

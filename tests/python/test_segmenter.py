@@ -35,12 +35,14 @@ def test_frames_may_be_freed_after_the_call(frames, cli_masks):
 
 def test_bgra_uint16_and_strided_frames_give_the_bgr_masks(frames):
     expected = [r.mask for r in segment(frames[:3])]
+    assert expected[-1].any()  # frames 0 and 1 give empty masks: frame 2 carries the test
     bgra = [np.dstack([f, np.full(f.shape[:2], 255, np.uint8)]) for f in frames[:3]]
     deep = [f.astype(np.uint16) * 256 for f in frames[:3]]
     padded = [np.pad(f, ((0, 0), (0, 7), (0, 0)))[:, :-7] for f in frames[:3]]  # padded rows
     fortran = [np.asfortranarray(f) for f in frames[:3]]  # channels not packed: copied once
     for variant in (bgra, deep, padded, fortran):
         masks = [r.mask for r in segment(variant)]
+        assert len(masks) == len(expected)
         assert all(np.array_equal(a, b) for a, b in zip(masks, expected))
 
 
@@ -49,6 +51,7 @@ def test_grey_frames_give_the_masks_of_their_picture_in_three_channels(frames):
     expected = [r.mask for r in segment([np.dstack([g, g, g]) for g in grey])]
     assert expected[-1].any()  # equal empty masks would prove nothing
     masks = [r.mask for r in segment(grey)]
+    assert len(masks) == len(expected)
     assert all(np.array_equal(a, b) for a, b in zip(masks, expected))
 
 
@@ -79,6 +82,7 @@ def test_every_method_gives_the_clis_masks(cli, clip, frames, method, tmp_path):
     expected = read_masks(tmp_path)
     results = segment(frames, movseg.Params(method=method))
     assert results[0].diagnostics.first_frame and any(m.any() for m in expected)
+    assert len(results) == len(expected)
     assert all(np.array_equal(r.mask, m) for r, m in zip(results, expected))
 
 
@@ -172,7 +176,9 @@ def test_float_frames_in_0_1_give_the_clis_masks_and_in_0_255_raise(frames, cli_
 def test_segmenters_in_parallel_threads_give_the_clis_masks(frames, cli_masks):
     with ThreadPoolExecutor(max_workers=4) as pool:
         runs = list(pool.map(lambda _: [r.mask for r in segment(frames)], range(4)))
+    assert cli_masks[-1].any()
     for masks in runs:
+        assert len(masks) == len(cli_masks)
         assert all(np.array_equal(a, b) for a, b in zip(masks, cli_masks))
 
 
@@ -183,7 +189,7 @@ def test_one_segmenter_shared_by_threads_does_not_crash(frames):
     assert all(r.mask.shape == frames[0].shape[:2] for r in results)
 
 
-def test_an_ignored_region_is_the_clis(frames, clip, cli, tmp_path):
+def test_an_ignored_region_is_the_clis(frames, clip, cli, cli_masks, tmp_path):
     # A boolean array at half the frames' size (the left quarter), scaled to them; the CLI's
     # --ignore image gives the same masks. None clears it.
     height, width = frames[0].shape[:2]
@@ -203,6 +209,9 @@ def test_an_ignored_region_is_the_clis(frames, clip, cli, tmp_path):
         assert np.array_equal(masks[index], expected), f"frame {index}"
     segmenter.set_ignored_region(None)
     segmenter.reset()
-    assert np.array_equal(segment(frames)[-1].mask, [segmenter.process(f) for f in frames][-1].mask)
+    cleared = [segmenter.process(frame).mask for frame in frames]
+    assert len(cleared) == len(cli_masks) and cli_masks[-1].any()
+    for index, expected in enumerate(cli_masks):
+        assert np.array_equal(cleared[index], expected), f"cleared, frame {index}"
     with pytest.raises(ValueError, match="2-D"):
         segmenter.set_ignored_region(np.zeros((4, 4, 3), np.uint8))

@@ -32,6 +32,7 @@ def test_streams_on_python_threads_give_each_ones_masks(frames, cli_masks):
     # push() runs without the GIL: streams of their own on Python threads run at once.
     with ThreadPoolExecutor(2) as pool:
         for masks in pool.map(lambda _: streamed(frames, 2), range(2)):
+            assert len(masks) == len(cli_masks)
             assert all(np.array_equal(a, b) for a, b in zip(masks, cli_masks))
 
 

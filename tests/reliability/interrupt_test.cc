@@ -34,6 +34,19 @@ bool waitForFile(const std::string& path, std::chrono::seconds limit) {
   return true;
 }
 
+// Sends `signal` to the CLI run `pid` once it has written `file` (midway), waits for it and
+// expects exit code 130.
+void stopOnceWritten(pid_t pid, const std::string& file, int signal,
+                     std::chrono::seconds patience) {
+  const bool midway = waitForFile(file, patience);
+  kill(pid, signal);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(midway) << file;
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+}
+
 std::string textOf(const std::string& path) {
   std::ifstream in(path);
   std::ostringstream text;
@@ -67,13 +80,8 @@ TEST_P(Interrupt, MidwayLeavesCompleteFilesAndExits130) {
                                    dir / "log.txt");
   ASSERT_GT(pid, 0);
   // The sixth mask exists: the run is midway, its signal handler installed.
-  const bool midway = waitForFile(out + "/00005.png", std::chrono::seconds(120));
-  kill(pid, GetParam().signal);
-  int status = 0;
-  ASSERT_EQ(waitpid(pid, &status, 0), pid);
-  ASSERT_TRUE(midway);
-  ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
-  EXPECT_EQ(WEXITSTATUS(status), 130);
+  ASSERT_NO_FATAL_FAILURE(
+      stopOnceWritten(pid, out + "/00005.png", GetParam().signal, std::chrono::seconds(120)));
 
   int masks = 0;
   for (const std::string& name : test::filesIn(out)) {
@@ -120,14 +128,8 @@ TEST_F(InterruptSeveral, StopsEveryRunWithCompleteFiles) {
   const std::string out = dir / "out";
   const pid_t pid = test::startCli({"segment", clip, other, "-o", out, "-q", "--threads", "2"},
                                    dir / "log.txt");
-  ASSERT_GT(pid, 0);
-  const bool midway = waitForFile(out + "/clip/00005.png", std::chrono::seconds(120));
-  kill(pid, SIGINT);
-  int status = 0;
-  ASSERT_EQ(waitpid(pid, &status, 0), pid);
-  ASSERT_TRUE(midway);
-  ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
-  EXPECT_EQ(WEXITSTATUS(status), 130);
+  ASSERT_NO_FATAL_FAILURE(
+      stopOnceWritten(pid, out + "/clip/00005.png", SIGINT, std::chrono::seconds(120)));
   const std::string log = textOf(dir / "log.txt");
   EXPECT_EQ(log.rfind("movseg: interrupted after ", 0), 0u) << log;
   for (const char* name : {"clip", "other"}) {
@@ -144,6 +146,25 @@ TEST_F(InterruptSeveral, StopsEveryRunWithCompleteFiles) {
     EXPECT_EQ(manifest.at("frames_done").get<int>(), masks) << name;
     EXPECT_FALSE(manifest.at("finished").get<bool>()) << name;
   }
+}
+
+// bench stops as segment does: one line, exit 130, and no scratch folder left in /tmp.
+class InterruptBench : public Interrupt {};
+
+TEST_F(InterruptBench, StopsWithoutATableAndRemovesItsScratchFolder) {
+  test::TempDir dir;
+  const pid_t pid =
+      test::startCli({"bench", *clip_ / "clip", "--methods", "dense", "--json", dir / "bench.json"},
+                     dir / "log.txt");
+  ASSERT_GT(pid, 0);
+  const std::string scratch =
+      (fs::temp_directory_path() / ("movseg-bench-" + std::to_string(pid))).string();
+  ASSERT_NO_FATAL_FAILURE(
+      stopOnceWritten(pid, scratch + "/dense/clip/00005.png", SIGINT, std::chrono::seconds(60)));
+  const std::string log = textOf(dir / "log.txt");
+  EXPECT_NE(log.find("movseg: interrupted"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(scratch));
+  EXPECT_FALSE(fs::exists(dir / "bench.json"));
 }
 
 }  // namespace

@@ -31,6 +31,8 @@ TEST(Options, BadCliOptionsExitWithOneLine) {
       {segment + "--alignment-width -5", "alignment_width"},
       {segment + "--segmentation-width 1000000", "segmentation_width"},
       {segment + "--max-frames -1", "--max-frames"},
+      {segment + "--timeout inf", "--timeout"},
+      {segment + "--timeout nan", "--timeout"},  // NaN passes every range check
       {segment + "--set ransac_iterations=1e8", "ransac_iterations"},
       {segment + "--set max_corners=2000000000", "max_corners"},
       {segment + "--set lk_window=4", "lk_window"},
@@ -50,6 +52,7 @@ TEST(Options, BadCliOptionsExitWithOneLine) {
       {"bench " + (dir / "clip") + " --size 9000x10", "--size"},
       {"bench " + (dir / "clip") + " --methods fast", "--methods"},
       {"demo -o " + (dir / "d") + " --frames 0", "frames"},
+      {"demo -o " + (dir / "d") + " --frames 1", "frames"},  // nothing to score: no J nan
       {"demo -o " + (dir / "d") + " --lambda -1", "lambda"},
   };
   for (const auto& [arguments, named] : cases) {
@@ -106,17 +109,20 @@ TEST(Options, EveryParameterIsSetByNameOrByItsOption) {
   EXPECT_EQ(run.exit_code, 0) << run.output;
 }
 
-// The short forms README names: --model for motion_model, --static for static_camera.
+// The short forms README names: --model for motion_model, --static for static_camera, --gmm-k
+// for gmm_clusters.
 TEST(Options, ShortFormsSetTheirParameters) {
   test::TempDir dir;
   ASSERT_EQ(test::runCli("synth -o " + (dir / "clip") + " --frames 3 --size 160x120").exit_code, 0);
-  const test::CommandResult run = test::runCli("segment " + (dir / "clip/frames") + " -o " +
-                                              (dir / "out") + " -q --model homography --static");
+  const test::CommandResult run =
+      test::runCli("segment " + (dir / "clip/frames") + " -o " + (dir / "out") +
+                   " -q --model homography --static --gmm-k 7");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const nlohmann::json settings =
       nlohmann::json::parse(std::ifstream(dir / "out/movseg-run.json")).at("settings");
   EXPECT_EQ(settings.at("motion_model"), "homography");
   EXPECT_EQ(settings.at("static_camera"), "true");
+  EXPECT_EQ(settings.at("gmm_clusters"), "7");
 }
 
 // Booleans of --set are true, false, 1 or 0 in any case, and they take effect: a static camera

@@ -1,11 +1,17 @@
 // Issue 15's output faults: a full disk (a file-size limit), outputs that would overwrite the
 // input, empty names, a folder holding another run, overlay names and codecs, exit codes.
+#include <fcntl.h>
+#include <poll.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <thread>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -154,6 +160,170 @@ TEST_F(OutputFaults, OutputsInsideTheInputAreRefused) {
   EXPECT_EQ(fs::file_size(video), size);
   EXPECT_EQ(test::filesIn(frames()).size(), 12u);
   EXPECT_FALSE(fs::exists(dir_ / "out/00000.png"));
+}
+
+// Empty names are refused by every command, not taken as "none" or as the filesystem's root.
+TEST_F(OutputFaults, EmptyOutputNamesAreRefused) {
+  const std::string masks = *clip_ / "clip/masks";
+  const std::string cases[] = {
+      "synth -o '' --frames 2",
+      "demo -o '' --frames 2",
+      "eval " + masks + " " + masks + " --json ''",
+      "eval " + masks + " " + masks + " --csv ''",
+      "bench " + (*clip_ / "clip") + " --json ''",
+      "bench " + (*clip_ / "clip") + " --ignore ''",
+      "segment " + frames() + " -o " + dir_ / "out" + " --ignore ''",
+  };
+  for (const std::string& arguments : cases) {
+    SCOPED_TRACE(arguments);
+    test::expectOneLineError(test::runCli(arguments), "empty", test::kExitUsage);
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+// eval's reports stay out of PRED and GT, as segment's outputs stay out of its input.
+TEST_F(OutputFaults, EvalRefusesToWriteIntoItsInputs) {
+  const std::string masks = *clip_ / "clip/masks", mask = masks + "/00000.png";
+  const auto size = fs::file_size(mask);
+  for (const std::string option : {"--json", "--csv", "--html"}) {
+    SCOPED_TRACE(option);
+    test::expectOneLineError(
+        test::runCli("eval " + masks + " " + (*clip_ / "clip") + " " + option + " " + mask),
+        "would write into the input", test::kExitUsage);
+    test::expectOneLineError(
+        test::runCli("eval " + frames() + " " + masks + " " + option + " " + frames() + "/report"),
+        "would write into the input", test::kExitUsage);
+  }
+  EXPECT_EQ(fs::file_size(mask), size);
+}
+
+// An output path that cannot be written is found before the work, not after it.
+TEST_F(OutputFaults, UnwritableReportPathsFailBeforeTheWork) {
+  fs::create_directories(dir_ / "a-folder");
+  { std::ofstream(dir_ / "a-file") << "x"; }
+  const std::string masks = *clip_ / "clip/masks";
+  const test::CommandResult stats =
+      test::runCli("segment " + frames() + " -o " + dir_ / "out" + " --stats " + dir_ / "a-folder");
+  test::expectOneLineError(stats, "a-folder", test::kExitRunFailed);
+  EXPECT_FALSE(fs::exists(dir_ / "out/00000.png"));
+  for (const std::string& report : {dir_ / "a-folder", dir_ / "a-file/x.json"}) {
+    SCOPED_TRACE(report);
+    // eval prints its table, bench its table and progress, only once they have done the work.
+    test::expectOneLineError(test::runCli("eval " + masks + " " + masks + " --json " + report),
+                             report, test::kExitRunFailed);
+    test::expectOneLineError(test::runCli("eval " + masks + " " + masks + " --html " + report),
+                             report, test::kExitRunFailed);
+    test::expectOneLineError(
+        test::runCli("bench " + (*clip_ / "clip") + " --methods diff --json " + report), report,
+        test::kExitRunFailed);
+    test::expectOneLineError(
+        test::runCli("bench " + (*clip_ / "clip") + " --methods diff --html " + report), report,
+        test::kExitRunFailed);
+  }
+  EXPECT_TRUE(fs::is_directory(dir_ / "a-folder"));
+  EXPECT_TRUE(fs::is_empty(dir_ / "a-folder"));
+}
+
+// Reads a FIFO on a thread of its own until its writer closes it: what a `cat fifo` would get.
+class FifoReader {
+ public:
+  explicit FifoReader(const std::string& path)
+      // Opened without waiting for a writer; the CLI, which will not wait for a reader, finds one.
+      : fd_(::open(path.c_str(), O_RDONLY | O_NONBLOCK)), thread_([this] { readAll(); }) {}
+  ~FifoReader() {
+    if (thread_.joinable()) thread_.join();
+    if (fd_ >= 0) ::close(fd_);
+  }
+  // Everything written, once the writer has closed the FIFO.
+  std::string text() {
+    thread_.join();
+    return text_;
+  }
+
+ private:
+  // Until the writer hangs up (poll reports no hang-up before a writer came), at most 30 s.
+  void readAll() {
+    pollfd watch{fd_, POLLIN, 0};
+    while (::poll(&watch, 1, 30000) > 0) {
+      char buffer[4096];
+      const ssize_t n = ::read(fd_, buffer, sizeof buffer);
+      if (n > 0) text_.append(buffer, static_cast<size_t>(n));
+      if (n <= 0 && (watch.revents & POLLHUP) != 0) return;
+    }
+  }
+
+  int fd_;
+  std::string text_;
+  std::thread thread_;
+};
+
+// A FIFO, a device (not tested here: /dev nodes are everyone's) and a symlink stay what they
+// are: the FIFO and the device get the bytes, the symlink's target is replaced.
+TEST_F(OutputFaults, AFifoOrASymlinkAsOutputIsWrittenThroughNotReplaced) {
+  const std::string fifo = dir_ / "stats.fifo";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  {
+    FifoReader reader(fifo);
+    const test::CommandResult r =
+        test::runCli("segment " + frames() + " -o " + dir_ / "out" + " -q --stats " + fifo);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    std::istringstream lines(reader.text());
+    std::string line;
+    int count = 0;
+    while (std::getline(lines, line)) EXPECT_EQ(nlohmann::json::parse(line).at("frame"), count++);
+    EXPECT_EQ(count, 12);
+  }
+  // Without a reader: one line at once, not a wait for one.
+  test::expectOneLineError(
+      test::runCli("segment " + frames() + " -o " + dir_ / "out2" + " -q --stats " + fifo),
+      "no process reads the FIFO", test::kExitRunFailed);
+  EXPECT_FALSE(fs::exists(dir_ / "out2/00000.png"));
+  struct stat info {};
+  ASSERT_EQ(lstat(fifo.c_str(), &info), 0);
+  EXPECT_TRUE(S_ISFIFO(info.st_mode));
+
+  fs::create_directories(dir_ / "reports");
+  fs::create_symlink("reports/scores.json", dir_ / "link.json");  // relative, as ln -s makes it
+  const test::CommandResult r =
+      test::runCli("eval " + (*clip_ / "clip/masks") + " " + (*clip_ / "clip/masks") + " --json " +
+                   dir_ / "link.json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::is_symlink(dir_ / "link.json"));
+  EXPECT_NO_THROW(nlohmann::json::parse(std::ifstream(dir_ / "reports/scores.json")));
+  EXPECT_FALSE(anyPartFile(dir_.path()));
+}
+
+// synth and demo write into a folder that holds files only when told to, and then leave no
+// frame of a longer earlier sequence behind.
+TEST_F(OutputFaults, SynthAndDemoReplaceAFolderThatHoldsFilesOnlyWithOverwrite) {
+  const std::string synth = "synth -o " + dir_ / "seq" + " --size 64x48 --frames ";
+  ASSERT_EQ(test::runCli(synth + "5").exit_code, 0);
+  test::expectOneLineError(test::runCli(synth + "3"), "--overwrite", test::kExitUsage);
+  EXPECT_TRUE(fs::exists(dir_ / "seq/frames/00004.png"));
+  ASSERT_EQ(test::runCli(synth + "3 --overwrite").exit_code, 0);
+  EXPECT_EQ(test::filesIn(dir_ / "seq/frames").size(), 3u);
+  EXPECT_EQ(test::filesIn(dir_ / "seq/masks").size(), 3u);
+  std::ifstream camera(dir_ / "seq/camera.jsonl");
+  std::string line;
+  int lines = 0;
+  while (std::getline(camera, line)) ++lines;
+  EXPECT_EQ(lines, 2);  // one per frame after the first
+
+  const std::string demo = "demo -o " + dir_ / "demo" + " --frames ";
+  ASSERT_EQ(test::runCli(demo + "4").exit_code, 0);
+  test::expectOneLineError(test::runCli(demo + "3"), "--overwrite", test::kExitUsage);
+  const test::CommandResult again = test::runCli(demo + "3 --overwrite");
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  for (const char* folder : {"frames", "masks", "segmented", "overlay"}) {
+    EXPECT_TRUE(fs::exists(dir_ / "demo/" + folder + "/00002.png")) << folder;
+    EXPECT_FALSE(fs::exists(dir_ / "demo/" + folder + "/00003.png")) << folder;
+  }
+  // A folder of anything else is refused too.
+  fs::create_directories(dir_ / "mine");
+  { std::ofstream(dir_ / "mine/notes.txt") << "x"; }
+  test::expectOneLineError(test::runCli("synth -o " + dir_ / "mine"), "not empty",
+                           test::kExitUsage);
+  EXPECT_FALSE(fs::exists(dir_ / "mine/frames"));
 }
 
 TEST_F(OutputFaults, ARunIntoAUsedFolderIsRefusedUnlessOverwritten) {

@@ -40,7 +40,12 @@ check_page() {
   chromium_run --dump-dom "file://$page" > "$page.dom"
   grep -q "data-charts=\"$charts\"" "$page.dom" ||
     fail "$page: not $charts charts drawn: $(grep -o 'data-charts="[0-9]*"' "$page.dom")"
-  for figure in $(figures "$json"); do
+  # Assigned first: set -e does not see a failing substitution in a for list, and a loop over
+  # nothing would check no cell. Both reports here hold at least two rows (4 figures).
+  local figs
+  figs=$(figures "$json")
+  [ "$(wc -l <<<"$figs")" -ge 4 ] || fail "no figures read from $json: $figs"
+  for figure in $figs; do
     grep -q "<td>$figure</td>" "$page.dom" || fail "$page: no cell $figure"
   done
   [ "$(grep -o '<img alt="frame' "$page.dom" | wc -l)" -gt 0 ] || fail "$page: no thumbnails"
