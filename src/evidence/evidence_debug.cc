@@ -10,7 +10,7 @@ cv::Mat drawResidual(const cv::Mat& residual, float scale) {
 
 cv::Mat drawConfirmation(const cv::Mat& confirmation) {
   cv::Mat picture;
-  confirmation.convertTo(picture, CV_8U, 255);
+  confirmation.convertTo(picture, CV_8U, 127.5, 127.5);
   return picture;
 }
 

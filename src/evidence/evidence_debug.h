@@ -10,8 +10,9 @@ namespace movseg {
 // in this pair, `scale`; white from twice that.
 cv::Mat drawResidual(const cv::Mat& residual, float scale);
 
-// The photometric check's confirmation (CV_32F, [0, 1]): white where the flow explains the patch
-// better than the camera by the margin, black where it does not at all.
+// The photometric check's confirmation (CV_32F, [-1, 1]): white where the flow explains the patch
+// better than the camera by the margin, black where the camera explains it better by the margin,
+// mid-grey where neither does (flat patches, which any motion explains).
 cv::Mat drawConfirmation(const cv::Mat& confirmation);
 
 // The previous mask carried by the flow (CV_8U, or empty on a pair without one: black), of `size`.

@@ -75,11 +75,11 @@ int median8(const cv::Mat& image, const cv::Mat& ignored) {
   return median(histogram);
 }
 
-// A row of the confirmation: clamp((camera - flow) / margin, 0, 1), 16 pixels at a time. (GCC
+// A row of the confirmation: clamp((camera - flow) / margin, -1, 1), 16 pixels at a time. (GCC
 // vectorises std::clamp into compares and blends, twice the instructions of a max and a min,
 // which give the same values here: the quotient is never NaN nor -0.)
 void confirmationRow(const uchar* flow, const uchar* camera, float margin, int width, float* out) {
-  const v_float32x4 zero = cv::v_setzero_f32(), one = cv::v_setall_f32(1.f);
+  const v_float32x4 minus_one = cv::v_setall_f32(-1.f), one = cv::v_setall_f32(1.f);
   const v_float32x4 margins = cv::v_setall_f32(margin);
   int x = 0;
   for (; x + 16 <= width; x += 16) {
@@ -93,12 +93,12 @@ void confirmationRow(const uchar* flow, const uchar* camera, float margin, int w
       v_int32x4 low, high;
       cv::v_expand(better[half], low, high);
       float* at = out + x + 8 * half;
-      cv::v_store(at, cv::v_min(cv::v_max(cv::v_cvt_f32(low) / margins, zero), one));
-      cv::v_store(at + 4, cv::v_min(cv::v_max(cv::v_cvt_f32(high) / margins, zero), one));
+      cv::v_store(at, cv::v_min(cv::v_max(cv::v_cvt_f32(low) / margins, minus_one), one));
+      cv::v_store(at + 4, cv::v_min(cv::v_max(cv::v_cvt_f32(high) / margins, minus_one), one));
     }
   }
   for (; x < width; ++x) {
-    out[x] = std::clamp(static_cast<float>(camera[x] - flow[x]) / margin, 0.f, 1.f);
+    out[x] = std::clamp(static_cast<float>(camera[x] - flow[x]) / margin, -1.f, 1.f);
   }
 }
 
@@ -191,14 +191,18 @@ void PhotometricCheck::confirm(const cv::Mat& grey, const cv::Mat& camera_map,
   }
 }
 
-void confirmMotion(const cv::Mat& confirmation, cv::Mat* evidence) {
-  // The positive part scaled plus the negative part: the values of a branch on the sign, in a
-  // loop GCC vectorises (a branch, or the width read through `evidence` at each step, stops it).
+void confirmMotion(const cv::Mat& confirmation, const Params& params, cv::Mat* evidence) {
+  // The positive part scaled, at least the floor, plus the negative part: the values of a branch
+  // on the sign, in a loop GCC vectorises (a branch, or the width read through `evidence` at
+  // each step, stops it).
+  const auto floor = static_cast<float>(params.evidence_min);
   const int w = evidence->cols;
   for (int y = 0; y < evidence->rows; ++y) {
     const float* c = confirmation.ptr<float>(y);
     float* e = evidence->ptr<float>(y);
-    for (int x = 0; x < w; ++x) e[x] = std::max(e[x], 0.f) * c[x] + std::min(e[x], 0.f);
+    for (int x = 0; x < w; ++x) {
+      e[x] = std::max(std::max(e[x], 0.f) * c[x], floor) + std::min(e[x], 0.f);
+    }
   }
 }
 

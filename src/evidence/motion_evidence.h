@@ -37,7 +37,8 @@ struct LevelMap {
 // is no evidence of motion, however large the residual. Both explanations are scored by their
 // mean absolute difference over a patch; the confirmation is how much the flow's is smaller, in
 // units of `photometric_margin` times the frame's median difference under the camera (its
-// noise, blur and gain change), clipped to [0, 1].
+// noise, blur and gain change), clipped to [-1, 1]: negative where the camera explains the patch
+// better than the flow, i.e. where the flow's motion is refuted (confirmMotion()).
 // Before either explanation is scored, the previous frame's levels are mapped to the current
 // frame's (fitLevels): a frame brighter or darker as a whole would otherwise differ from both
 // explanations everywhere, and the frame's median difference, the unit of the confirmation,
@@ -79,8 +80,14 @@ class PhotometricCheck {
   cv::Mat by_flow_, by_camera_, flow_error_, camera_error_;
 };
 
-// Positive evidence scaled by the confirmation (CV_32F, [0, 1]); negative evidence is kept.
-void confirmMotion(const cv::Mat& confirmation, cv::Mat* evidence);
+// Positive evidence scaled by the confirmation (CV_32F, [-1, 1]), no lower than `evidence_min`;
+// negative evidence is kept. A residual whose motion the patch refutes (the camera explains it
+// better than the flow, on texture the flow's displacement would have misaligned) says static
+// as strongly as it said moving: DIS's flow bleeds from a mover onto the textured background
+// beside it (the halo a carried mask then keeps, the gap between two movers close together)
+// as it does onto flat background, where both explanations are alike and the residual says
+// nothing (docs/design.md, "A refuted residual says static").
+void confirmMotion(const cv::Mat& confirmation, const Params& params, cv::Mat* evidence);
 
 // A pixel is uncovered when the previous frame's mover hid what the camera puts there (the
 // previous mask, CV_8U 0/255, at the nearest pixel to `camera_map`'s, above half) while its flow

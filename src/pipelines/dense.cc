@@ -329,9 +329,9 @@ class DensePipeline : public Pipeline {
   }
 
   // The pair's own evidence (evidence_): the residual in units of the background's (the scale,
-  // returned), confirmed by the photometric check, none where the last mover uncovered the
-  // background, nothing either way within the flow's reach of the ignored region (colour learns
-  // nothing there).
+  // returned), confirmed or refuted by the photometric check, none for motion where the last
+  // mover uncovered the background, nothing either way within the flow's reach of the ignored
+  // region (colour learns nothing there).
   float pairEvidence(const DenseAnalysis& a, const DebugSink& debug) {
     photometric_.confirm(a.grey, camera_map_, levels_, a.near_ignored, params_, &confirmation_);
     sample_residuals_.reserve(a.samples.size());  // at most one per sample: they do not grow
@@ -339,7 +339,7 @@ class DensePipeline : public Pipeline {
     const float scale = residualScale(
         unconfirmedResiduals(camera_, confirmation_, &sample_residuals_, &unconfirmed_), params_);
     motionEvidence(residual_, scale, params_, &evidence_);
-    confirmMotion(confirmation_, &evidence_);
+    confirmMotion(confirmation_, params_, &evidence_);
     const bool uncovers = !carried_.empty() && params_.uncovered;
     if (uncovers) dropUncovered(carried_, mask_, camera_map_, &evidence_);
     if (!a.near_ignored.empty()) clearWhere(a.near_ignored, &evidence_);

@@ -70,6 +70,20 @@ TEST(PhotometricCheck, ConfirmsAMovedTexturedSquareAndNotTheStillBackground) {
   EXPECT_LT(cv::mean(confirmed(scene.far))[0], 0.05);
 }
 
+// A flow that bleeds from the square onto the still textured background beside it: the camera
+// explains those pixels, the flow's 3 px misaligns their texture, and its motion is refuted.
+TEST(PhotometricCheck, RefutesAFlowBledOntoTheStillTexturedBackground) {
+  MovedSquare scene;
+  const cv::Rect beside(66, 30, 20, 30);  // right of the square, still
+  cv::Mat flow = uniformFlow(scene.size, {0, 0});
+  flow(cv::Rect(33, 30, 53, 30)).setTo(cv::Scalar(-3, 0));  // the square's motion, and beyond
+  flowMap(flow, &scene.flow_map);
+  const cv::Mat confirmed =
+      confirmation(scene.current, scene.previous, scene.flow_map, scene.camera_map);
+  EXPECT_LT(cv::mean(confirmed(beside))[0], -0.9);
+  EXPECT_GT(cv::mean(confirmed(scene.inside))[0], 0.9);
+}
+
 // The previous frame and a change of light fitted to `grey` from it, the flow exact (none).
 LevelMap fittedLevels(const cv::Mat& grey, const cv::Mat& previous) {
   PhotometricCheck check;
@@ -156,7 +170,7 @@ cv::Mat openCvConfirmation(const cv::Mat& grey, const cv::Mat& previous, const c
   for (int y = 0; y < grey.rows; ++y) {
     for (int x = 0; x < grey.cols; ++x) {
       const int better = errors[1].at<uchar>(y, x) - errors[0].at<uchar>(y, x);
-      confirmation.at<float>(y, x) = std::clamp(static_cast<float>(better) / margin, 0.f, 1.f);
+      confirmation.at<float>(y, x) = std::clamp(static_cast<float>(better) / margin, -1.f, 1.f);
     }
   }
   return confirmation;
@@ -176,6 +190,7 @@ void expectOpenCvsResults(const cv::Mat& grey, const cv::Mat& previous, const cv
   EXPECT_EQ(cv::countNonZero(ours != opencv), 0) << what;
   if (grey.total() >= 100) {
     EXPECT_GT(cv::countNonZero((ours > 0) & (ours < 1)), 0) << what << ": nothing confirmed in part";
+    EXPECT_GT(cv::countNonZero((ours < 0) & (ours > -1)), 0) << what << ": nothing refuted in part";
   }
   cv::Mat opencv_carried;
   cv::remap(mask, opencv_carried, flow_map, cv::noArray(), cv::INTER_LINEAR, cv::BORDER_CONSTANT,
@@ -267,12 +282,16 @@ TEST(PhotometricCheck, GivesOpenCvsConfirmationAndCarriedMaskOnDavisPairs) {
 }
 
 TEST(MotionEvidence, ConfirmationScalesOnlyEvidenceForMotion) {
-  cv::Mat evidence = (cv::Mat_<float>(1, 3) << 2.f, -1.f, 1.f);
-  const cv::Mat confirmation = (cv::Mat_<float>(1, 3) << 0.5f, 0.f, 0.f);
-  confirmMotion(confirmation, &evidence);
+  cv::Mat evidence = (cv::Mat_<float>(1, 6) << 2.f, -1.f, 1.f, 1.f, 2.5f, -1.f);
+  const cv::Mat confirmation = (cv::Mat_<float>(1, 6) << 0.5f, 0.f, 0.f, -0.5f, -1.f, -1.f);
+  Params params;  // evidence_min -2
+  confirmMotion(confirmation, params, &evidence);
   EXPECT_FLOAT_EQ(evidence.at<float>(0), 1.f);
   EXPECT_FLOAT_EQ(evidence.at<float>(1), -1.f);  // background evidence needs no confirmation
-  EXPECT_FLOAT_EQ(evidence.at<float>(2), 0.f);
+  EXPECT_FLOAT_EQ(evidence.at<float>(2), 0.f);   // neither explains better: nothing said
+  EXPECT_FLOAT_EQ(evidence.at<float>(3), -0.5f);  // refuted in part: static in part
+  EXPECT_FLOAT_EQ(evidence.at<float>(4), -2.f);   // refuted: static, at most as a pair can say
+  EXPECT_FLOAT_EQ(evidence.at<float>(5), -1.f);   // nor is background evidence made stronger
 }
 
 TEST(MotionEvidence, ScaleIsTheUpperQuantileWithAFloorAtFiveMedians) {
