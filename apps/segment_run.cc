@@ -529,8 +529,17 @@ SegmentSummary runSegmentation(const SegmentOptions& options) {
   StreamSegmenter segmenter(params, options.threads);
   if (!options.ignore.empty()) segmenter.setIgnoredRegion(readIgnoredRegion(options.ignore));
   StopOnSignal stop_on_signal;
-  std::unique_ptr<FrameSource> source =
-      FrameSource::open(options.input, DecoderLimits{options.timeout, &g_stop});
+  std::unique_ptr<FrameSource> source;
+  try {
+    source = FrameSource::open(options.input, DecoderLimits{options.timeout, &g_stop});
+  } catch (const std::exception&) {
+    // A signal while the stream was being opened ended the open: an interrupted run, not a
+    // failed one (nothing written yet).
+    if (!StopOnSignal::stopped()) throw;
+    SegmentSummary summary;
+    summary.interrupted = true;
+    return summary;
+  }
   const SourceReport opened = source->report();
   claimOutputFolder(options);
   RunOutputs outputs(options, opened.fps);

@@ -166,6 +166,26 @@ TEST(InputFaults, AStalledStreamStopsWithinASecondOfSigint) {
   EXPECT_EQ(WEXITSTATUS(status), 130);
 }
 
+// A signal while the stream is still being opened (a server that never answers, no timeout) is
+// an interruption like any other: exit 130, nothing written.
+TEST(InputFaults, SigintWhileAStreamOpensIsAnInterruption) {
+  const test::TempDir dir;
+  const test::LocalServer server;
+  const pid_t pid = test::startCli({"segment", server.url(), "-o", dir / "out", "-q", "--timeout", "0"},
+                                   dir / "log.txt");
+  ASSERT_GT(pid, 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // opening, its handler installed
+  kill(pid, SIGINT);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  std::ifstream log(dir / "log.txt");
+  const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text.rfind("movseg: interrupted after 0 frames", 0), 0u) << text;
+  EXPECT_FALSE(fs::exists(dir / "out/00000.png"));
+}
+
 TEST(InputFaults, SpecialFilesAreNamedForWhatTheyAre) {
   const test::TempDir dir;
   test::expectOneLineError(test::runCli("segment /dev/null -o " + dir / "out"),
