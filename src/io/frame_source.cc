@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 #include <opencv2/imgcodecs.hpp>
@@ -180,7 +181,36 @@ std::vector<std::string> listImages(const std::string& folder) {
   return files;
 }
 
+namespace {
+
+// A JPEG file (it starts with the start-of-image marker FF D8 FF) whose last bytes hold no
+// end-of-image marker (FF D9). In the compressed data a byte FF is only ever followed by 00 or a
+// restart marker (D0-D7), so a file cut anywhere in it ends without FF D9; a few bytes of
+// padding after the marker, which some encoders write, are allowed.
+bool isTruncatedJpeg(const std::string& path) {
+  constexpr std::streamoff kTail = 16;
+  std::ifstream file(path, std::ios::binary | std::ios::ate);
+  const std::streamoff size = file ? static_cast<std::streamoff>(file.tellg()) : 0;
+  if (size < 4) return false;
+  unsigned char head[3] = {};
+  file.seekg(0);
+  file.read(reinterpret_cast<char*>(head), 3);
+  if (head[0] != 0xFF || head[1] != 0xD8 || head[2] != 0xFF) return false;
+  const std::streamoff tail_size = std::min(size, kTail);
+  unsigned char tail[kTail] = {};
+  file.seekg(size - tail_size);
+  file.read(reinterpret_cast<char*>(tail), tail_size);
+  if (!file) return false;
+  for (std::streamoff i = 0; i + 1 < tail_size; ++i) {
+    if (tail[i] == 0xFF && tail[i + 1] == 0xD9) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 cv::Mat decodeImage(const std::string& path, int flags) {
+  if (isTruncatedJpeg(path)) return cv::Mat();
   try {
     return cv::imread(path, flags);
   } catch (const cv::Exception&) {

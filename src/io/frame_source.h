@@ -48,7 +48,9 @@ std::string inputPath(const std::string& input);
 std::vector<std::string> listImages(const std::string& folder);
 
 // cv::imread, but an empty Mat for every file it cannot decode: OpenCV throws instead when a
-// header claims a size beyond its limits.
+// header claims a size beyond its limits, and libjpeg decodes a JPEG cut short (an interrupted
+// copy or download) with its missing rows grey and a warning on stderr, so such a file, which
+// does not end with the end-of-image marker, is not decoded.
 cv::Mat decodeImage(const std::string& path, int flags);
 
 }  // namespace movseg

@@ -166,6 +166,33 @@ TEST(InputFaults, AStalledStreamStopsWithinASecondOfSigint) {
   EXPECT_EQ(WEXITSTATUS(status), 130);
 }
 
+// A JPEG frame cut short (an interrupted copy) is a corrupt image, not a frame with its bottom
+// grey: the frames before it are segmented and written whole, then one line, exit 1, and no
+// libjpeg warning beside it. The same frame whole, or with padding after its end marker, is read.
+TEST(InputFaults, ATruncatedJpegFrameIsACorruptImage) {
+  const test::TempDir dir;
+  fs::create_directory(dir / "frames");
+  for (int t = 0; t < 4; ++t) {
+    ASSERT_TRUE(cv::imwrite(dir / ("frames/0000" + std::to_string(t) + ".jpg"),
+                            test::texture({96, 72}, t)));
+  }
+  const std::string third = dir / "frames/00002.jpg";
+  std::ifstream in(third, std::ios::binary);
+  const std::string whole((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  in.close();
+  std::ofstream(third + ".padded", std::ios::binary) << whole << std::string(8, '\0');
+  std::ofstream(third, std::ios::binary | std::ios::trunc) << whole.substr(0, whole.size() / 3);
+
+  const test::CommandResult r = test::runCli("segment " + dir / "frames" + " -o " + dir / "out");
+  test::expectOneLineError(r, "cannot decode image '" + third + "'", test::kExitRunFailed);
+  EXPECT_TRUE(fs::exists(dir / "out/00001.png"));
+  EXPECT_FALSE(fs::exists(dir / "out/00002.png"));
+
+  fs::rename(third + ".padded", third);
+  EXPECT_EQ(test::runCli("segment " + dir / "frames" + " -o " + dir / "again -q").exit_code, 0);
+  EXPECT_TRUE(fs::exists(dir / "again/00003.png"));
+}
+
 // A signal while the stream is still being opened (a server that never answers, no timeout) is
 // an interruption like any other: exit 130, nothing written.
 TEST(InputFaults, SigintWhileAStreamOpensIsAnInterruption) {
