@@ -75,6 +75,22 @@ TEST(EvalCli, PrintsTableAndWritesCsvAndJson) {
   EXPECT_NEAR(report.at("mean").at("J").get<double>(), 4.0 / 7, 1e-12);
 }
 
+// --format names the ground truth's layout instead of guessing it: the plain pair read as
+// plain gives the figures above, read as CDnet (no groundtruth/ folder) one line, and a layout
+// that does not exist is a usage error.
+TEST(EvalCli, FormatIsTakenAsGivenOrRefused) {
+  test::TempDir dir;
+  writePlainPair(dir);
+  const std::string pair = "eval '" + (dir / "pred") + "' '" + (dir / "gt") + "'";
+  const test::CommandResult plain = test::runCli(pair + " --format plain");
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_NE(plain.output.find("1 plain sequence"), std::string::npos) << plain.output;
+  EXPECT_NE(plain.output.find("0.571"), std::string::npos) << plain.output;
+  test::expectOneLineError(test::runCli(pair + " --format cdnet"), "temporalROI.txt",
+                           test::kExitRunFailed);
+  test::expectOneLineError(test::runCli(pair + " --format bogus"), "--format", test::kExitUsage);
+}
+
 TEST(EvalCli, DatasetLayoutScoresEverySequence) {
   test::TempDir dir;
   for (const std::string name : {"one", "two"}) {

@@ -1,5 +1,6 @@
 """movseg.Segmenter through numpy: the CLI's masks bit for bit, every frame type, the results."""
 import gc
+import json
 import subprocess
 from concurrent.futures import ThreadPoolExecutor
 
@@ -70,9 +71,22 @@ def test_result_arrays_and_diagnostics(frames):
     assert "\n    matches=" in repr(d) and "movseg.Result(mask 160x120" in repr(second)
 
 
-def test_homography_model(frames):
+def test_homography_model(clip, frames):
+    # The first pair's fitted homography is the generator's own (camera.jsonl, previous frame
+    # to current) within a pixel at the frame's corners.
     r = segment(frames[:2], movseg.Params(motion_model="homography"))[1]
     assert not r.diagnostics.model_is_affine and r.diagnostics.model.shape == (3, 3)
+    first = json.loads((clip / "camera.jsonl").read_text().splitlines()[0])
+    assert first["frame"] == 1
+    height, width = frames[0].shape[:2]
+    corners = np.array([[0, width - 1, 0, width - 1], [0, 0, height - 1, height - 1], [1, 1, 1, 1]],
+                       float)
+
+    def moved(model):
+        points = np.asarray(model) @ corners
+        return points[:2] / points[2]
+
+    assert np.abs(moved(r.diagnostics.model) - moved(first["model"])).max() < 1.0
 
 
 @pytest.mark.parametrize("method", ["paper", "diff", "mog2", "mog2-comp"])
@@ -186,7 +200,10 @@ def test_one_segmenter_shared_by_threads_does_not_crash(frames):
     segmenter = movseg.Segmenter()
     with ThreadPoolExecutor(max_workers=4) as pool:
         results = list(pool.map(lambda f: segmenter.process(f.copy()), frames * 3))
-    assert all(r.mask.shape == frames[0].shape[:2] for r in results)
+    # The calls are serialised in some order: whichever it was, every mask is a valid one.
+    assert all(r.mask.shape == frames[0].shape[:2] and r.mask.dtype == np.uint8 for r in results)
+    assert all(set(np.unique(r.mask)) <= {0, 255} for r in results)
+    assert sum(r.diagnostics.first_frame for r in results) == 1
 
 
 def test_an_ignored_region_is_the_clis(frames, clip, cli, cli_masks, tmp_path):

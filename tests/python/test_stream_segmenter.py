@@ -7,13 +7,16 @@ import pytest
 import movseg
 
 
-def streamed(frames, threads, params=None):
-    stream = movseg.StreamSegmenter(params or movseg.Params(), threads=threads)
+def pushed(stream, frames):
     results = [stream.push(frame.copy()) for frame in frames]  # copies: freed after the call
     assert results[0] is None and all(r is not None for r in results[1:])
     last = stream.flush()
     assert stream.flush() is None
     return [r.mask for r in results[1:]] + [last.mask]
+
+
+def streamed(frames, threads, params=None):
+    return pushed(movseg.StreamSegmenter(params or movseg.Params(), threads=threads), frames)
 
 
 @pytest.mark.parametrize("threads", [1, 2])
@@ -34,6 +37,35 @@ def test_streams_on_python_threads_give_each_ones_masks(frames, cli_masks):
         for masks in pool.map(lambda _: streamed(frames, 2), range(2)):
             assert len(masks) == len(cli_masks)
             assert all(np.array_equal(a, b) for a, b in zip(masks, cli_masks))
+
+
+@pytest.mark.parametrize("threads", [1, 2])
+def test_an_ignored_region_gives_the_segmenters_masks(frames, threads):
+    # The half of the frame where the clip's movers are most, ignored from the start: the
+    # stream gives Segmenter's masks with the same region, nothing there; None clears it, and
+    # the stream's masks are those without a region.
+    plain = streamed(frames, 1)
+    width = frames[0].shape[1]
+    left = sum(int(mask[:, : width // 2].sum()) for mask in plain)
+    right = sum(int(mask[:, width // 2 :].sum()) for mask in plain)
+    region = np.zeros(frames[0].shape[:2], np.uint8)
+    half = slice(0, width // 2) if left >= right else slice(width // 2, width)
+    region[:, half] = 1
+    assert any(mask[:, half].any() for mask in plain), "no mover in either half"
+    segmenter = movseg.Segmenter()
+    segmenter.set_ignored_region(region)
+    expected = [segmenter.process(frame).mask for frame in frames]
+    assert not any(mask[:, half].any() for mask in expected)
+    stream = movseg.StreamSegmenter(threads=threads)
+    stream.set_ignored_region(region)
+    masks = pushed(stream, frames)
+    assert len(masks) == len(expected)
+    for index, (mask, want) in enumerate(zip(masks, expected)):
+        assert np.array_equal(mask, want), f"frame {index}"
+    stream.set_ignored_region(None)
+    stream.reset()
+    cleared = pushed(stream, frames)
+    assert all(np.array_equal(a, b) for a, b in zip(cleared, plain))
 
 
 def test_reset_params_and_bad_arguments(frames):

@@ -43,6 +43,21 @@ TEST(DegenerateScenes, FlatFramesFallBackToTheIdentityWithAnEmptyMask) {
   }
 }
 
+// README, "Bad input": every method that measures the camera flags a flat frame pair, which
+// shows no camera motion to measure (motion_fallback); MOG2, which measures none, flags nothing.
+TEST(DegenerateScenes, FlatFramesAreFlaggedByEveryMethodThatMeasuresTheCamera) {
+  const cv::Mat flat(kSize, CV_8UC3, cv::Scalar::all(90));
+  for (const Method method : {Method::kPaper, Method::kDiff, Method::kMog2,
+                              Method::kMog2Compensated, Method::kDense}) {
+    Segmenter segmenter(test::withMethod(method));
+    segmenter.process(flat);
+    segmenter.process(flat);  // `dense` takes the second showing for a repeated frame
+    const Result r = segmenter.process(flat);
+    test::expectValidResult(r, kSize);
+    EXPECT_EQ(r.diagnostics.motion_fallback, method != Method::kMog2) << static_cast<int>(method);
+  }
+}
+
 // `dense` measures the camera from the flow of textured samples: a flat frame has none, a frame
 // under 16 pixels a side no flow at all. Either way the pair says so (README, "Bad input").
 TEST(DegenerateScenes, DenseFlagsFramesWithoutMeasurableMotion) {

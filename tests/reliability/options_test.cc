@@ -83,15 +83,18 @@ TEST(Options, EveryParameterIsSetByNameOrByItsOption) {
   expected.check();
   const std::string segment =
       "segment " + (dir / "clip/frames") + " -o " + (dir / "out") + " -q --overwrite";
+  // The settings a run's manifest records, against `expected`.
+  const auto expectSettings = [&](const std::string& manifest) {
+    const nlohmann::json settings = nlohmann::json::parse(std::ifstream(manifest)).at("settings");
+    for (const FieldInfo& field : paramFields()) {
+      EXPECT_EQ(settings.at(field.name), toText(paramValue(expected, field.name))) << field.name;
+    }
+  };
   for (const std::string& options : {by_set, by_option}) {
     SCOPED_TRACE(options);
     const test::CommandResult run = test::runCli(segment + options);
     ASSERT_EQ(run.exit_code, 0) << run.output;
-    const nlohmann::json settings =
-        nlohmann::json::parse(std::ifstream(dir / "out/movseg-run.json")).at("settings");
-    for (const FieldInfo& field : paramFields()) {
-      EXPECT_EQ(settings.at(field.name), toText(paramValue(expected, field.name))) << field.name;
-    }
+    expectSettings(dir / "out/movseg-run.json");
   }
   // demo and bench take the same options (bench all but the method it is given by --methods).
   std::string bench_options;
@@ -101,7 +104,8 @@ TEST(Options, EveryParameterIsSetByNameOrByItsOption) {
   }
   const test::CommandResult demo =
       test::runCli("demo -o " + (dir / "demo") + " --frames 3" + by_option);
-  EXPECT_EQ(demo.exit_code, 0) << demo.output;
+  ASSERT_EQ(demo.exit_code, 0) << demo.output;
+  expectSettings(dir / "demo/segmented/movseg-run.json");
   const test::CommandResult bench =
       test::runCli("bench " + (dir / "clip") + " --methods dense" + bench_options);
   EXPECT_EQ(bench.exit_code, 0) << bench.output;
