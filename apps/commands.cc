@@ -2,9 +2,9 @@
 
 #include <filesystem>
 #include <regex>
-#include <vector>
 
 #include "io/atomic_write.h"
+#include "synth/synth.h"
 
 namespace movseg::cli {
 
@@ -37,15 +37,12 @@ void claimSequenceFolder(const std::string& dir, bool overwrite,
                        "' is not empty; --overwrite replaces the frames, masks and "
                        "camera.jsonl of a sequence there");
     }
-    std::vector<fs::path> folders{fs::path(dir) / "frames", fs::path(dir) / "masks"};
-    for (const char* folder : owned_folders) folders.push_back(fs::path(dir) / folder);
-    for (const fs::path& folder : folders) {
-      for (const auto& entry : fs::directory_iterator(folder, error)) {
-        if (isFrameFileName(entry.path().string())) fs::remove(entry.path());
+    removeSynthSequence(dir);
+    for (const char* folder : owned_folders) {
+      for (const std::string& file : frameFilesIn((fs::path(dir) / folder).string())) {
+        fs::remove(file);
       }
     }
-    fs::remove(fs::path(dir) / "camera.jsonl");
-    fs::remove(fs::path(dir) / "poses.jsonl");
   }
 }
 

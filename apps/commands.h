@@ -50,9 +50,9 @@ void refuseEmptyNames(const CLI::App& command, std::initializer_list<const char*
 
 // Claims the folder `dir` for a synthetic sequence (`synth`, `demo`). A folder
 // that holds anything is refused unless `overwrite`, which first removes what such a sequence
-// writes there (the numbered pictures of frames/, masks/ and of `owned_folders`, camera.jsonl,
-// poses.jsonl): a shorter sequence leaves no frame of a longer one behind, and a dataset named
-// by mistake is not mixed with synthetic frames.
+// writes there (removeSynthSequence()) and the numbered pictures of `owned_folders`: a shorter
+// sequence leaves no frame of a longer one behind, and a dataset named by mistake is not mixed
+// with synthetic frames.
 void claimSequenceFolder(const std::string& dir, bool overwrite,
                          std::initializer_list<const char*> owned_folders = {});
 

@@ -120,12 +120,9 @@ void claimOutputFolder(const SegmentOptions& options) {
   makeOutputFolder(options.output_dir);
   const fs::path dir(options.output_dir);
   const fs::path manifest = dir / kManifestName;
-  std::vector<fs::path> previous;
-  for (const fs::path& folder : {dir, dir / "overlay"}) {
-    std::error_code error;
-    for (const auto& entry : fs::directory_iterator(folder, error)) {
-      if (isFrameFileName(entry.path().string())) previous.push_back(entry.path());
-    }
+  std::vector<std::string> previous = frameFilesIn(dir.string());
+  for (const std::string& overlay : frameFilesIn((dir / "overlay").string())) {
+    previous.push_back(overlay);
   }
   if (previous.empty() && !fs::exists(manifest)) return;
   if (!options.overwrite) {
@@ -133,7 +130,7 @@ void claimOutputFolder(const SegmentOptions& options) {
                      (fs::exists(manifest) ? kManifestName : "numbered masks") +
                      "); --overwrite replaces them");
   }
-  for (const fs::path& file : previous) fs::remove(file);
+  for (const std::string& file : previous) fs::remove(file);
   fs::remove_all(dir / "debug");
   fs::remove(manifest);
 }

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -31,8 +32,9 @@ void makeOutputFolder(const std::string& path);
 // 00001.png, ..., more digits from 100000 on.
 std::string frameFileName(int index);
 
-// Whether `name` (a file name or a path) is one frameFileName() gives: five or more digits, .png.
-bool isFrameFileName(const std::string& name);
+// The files of `folder` named as frameFileName() names them (five or more digits, .png), in no
+// particular order; none when the folder does not exist. What a run wrote there, to be replaced.
+std::vector<std::string> frameFilesIn(const std::string& folder);
 
 // A text file grown line by line under PATH.part and renamed to PATH by close() (a device or FIFO
 // is written in place, as above). It holds whole lines only: a line that cannot be written

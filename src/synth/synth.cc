@@ -212,9 +212,13 @@ SynthFrame SynthSequence::frame(int t) const {
   return out;
 }
 
+// A sequence's folder: what writeSynthSequence() writes there and removeSynthSequence() removes.
+constexpr char kFramesFolder[] = "/frames", kMasksFolder[] = "/masks";
+constexpr char kCameraFile[] = "/camera.jsonl", kPosesFile[] = "/poses.jsonl";
+
 void writeSynthSequence(const std::string& dir, const SynthOptions& options) {
   const SynthSequence sequence(options);
-  const std::string frames_dir = dir + "/frames", masks_dir = dir + "/masks";
+  const std::string frames_dir = dir + kFramesFolder, masks_dir = dir + kMasksFolder;
   makeOutputFolder(frames_dir);
   makeOutputFolder(masks_dir);
   std::string cameras, poses;
@@ -225,8 +229,16 @@ void writeSynthSequence(const std::string& dir, const SynthOptions& options) {
     if (t > 0) cameras += cameraLine(t, frame.camera) + "\n";
     if (frame.pose) poses += poseLine(t, *frame.pose) + "\n";
   }
-  writeTextAtomic(dir + "/camera.jsonl", cameras);
-  if (!poses.empty()) writeTextAtomic(dir + "/poses.jsonl", poses);
+  writeTextAtomic(dir + kCameraFile, cameras);
+  if (!poses.empty()) writeTextAtomic(dir + kPosesFile, poses);
+}
+
+void removeSynthSequence(const std::string& dir) {
+  for (const char* folder : {kFramesFolder, kMasksFolder}) {
+    for (const std::string& file : frameFilesIn(dir + folder)) std::filesystem::remove(file);
+  }
+  std::filesystem::remove(dir + kCameraFile);
+  std::filesystem::remove(dir + kPosesFile);
 }
 
 SynthCamera parseSynthCamera(const std::string& name) {

@@ -98,6 +98,12 @@ class SynthSequence {
 // Throws std::runtime_error when a file cannot be written.
 void writeSynthSequence(const std::string& dir, const SynthOptions& options);
 
+// Removes what writeSynthSequence() writes in DIR (the numbered pictures of frames/ and masks/,
+// camera.jsonl, poses.jsonl), and nothing else, so that a shorter sequence written there next
+// leaves no frame of a longer one behind. Throws std::filesystem::filesystem_error when a file
+// cannot be removed.
+void removeSynthSequence(const std::string& dir);
+
 // "pan", "zoom", "rotate", "shake", "static", "mix", "dolly" or "forward"; throws
 // std::invalid_argument otherwise.
 SynthCamera parseSynthCamera(const std::string& name);
