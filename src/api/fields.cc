@@ -61,7 +61,7 @@ std::string number(double value) {
 }
 
 std::string rangeRule(const FieldInfo& info) {
-  const std::string range = "in [" + number(info.min) + ", " + number(info.max) + "]";
+  std::string range = "in [" + number(info.min) + ", " + number(info.max) + "]";
   if (info.type != FieldType::kInt || info.step <= 1) return range;
   if (info.step == 2) return (std::fmod(info.min, 2) != 0 ? "odd and " : "even and ") + range;
   return range + " in steps of " + std::to_string(info.step);

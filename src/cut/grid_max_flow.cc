@@ -62,7 +62,7 @@ class GridFlow {
         nodes_(*nodes),
         orphans_(*orphans),
         offset_{1, -1, state.cols + 2, -(state.cols + 2)} {
-    nodes_.assign(static_cast<size_t>((state.cols + 2) * (state.rows + 2)), Node());
+    nodes_.assign(static_cast<size_t>(state.cols + 2) * static_cast<size_t>(state.rows + 2), Node());
     orphans_.clear();
     forEachFreePixel(state, [&](int x, int y) { setCapacities(energy, state, x, y); });
   }

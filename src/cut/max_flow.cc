@@ -52,7 +52,7 @@ std::vector<std::uint8_t> cutWithBoost(const FlowGraph& g) {
                                       boost::property<boost::edge_reverse_t,
                                                       Traits::edge_descriptor>>>>;
   const int n = g.nodes();
-  Graph graph(static_cast<size_t>(n + 2));
+  Graph graph(static_cast<size_t>(n) + 2);
   const auto source = static_cast<Traits::vertex_descriptor>(n);
   const auto sink = static_cast<Traits::vertex_descriptor>(n + 1);
   auto capacity = boost::get(boost::edge_capacity, graph);
