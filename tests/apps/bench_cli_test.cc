@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -44,6 +45,7 @@ TEST(BenchCli, AccuracyDoesNotDependOnThreads) {
                            seed).exit_code, 0);
   }
   nlohmann::json reports[2];
+  std::string two_output;
   for (const int threads : {1, 2}) {
     const std::string json = dir / ("bench" + std::to_string(threads) + ".json");
     const test::CommandResult bench = test::runCli("bench " + dir / "data" + " --methods dense,paper --threads " +
@@ -51,6 +53,7 @@ TEST(BenchCli, AccuracyDoesNotDependOnThreads) {
     ASSERT_EQ(bench.exit_code, 0) << bench.output;
     EXPECT_EQ(bench.output.find("one stream on 2 threads") != std::string::npos, threads == 2)
         << bench.output;
+    if (threads == 2) two_output = bench.output;
     std::ifstream in(json);
     reports[threads - 1] = nlohmann::json::parse(in);
   }
@@ -68,6 +71,19 @@ TEST(BenchCli, AccuracyDoesNotDependOnThreads) {
   for (const char* fps : {"one_thread_fps", "two_threads_fps", "streams_at_once_fps"}) {
     EXPECT_GT(throughput.at(fps).get<double>(), 0.0) << fps;
   }
+  // The printed speed-ups are the report's frames per second over one thread's, and two
+  // streams ran at once (three sequences, two threads).
+  const double one = throughput.at("one_thread_fps").get<double>();
+  std::smatch two_threads, at_once;
+  ASSERT_TRUE(std::regex_search(two_output, two_threads,
+                                std::regex(R"(one stream on 2 threads +[0-9.]+ +([0-9.]+)x)")));
+  EXPECT_NEAR(std::stod(two_threads[1]), throughput.at("two_threads_fps").get<double>() / one,
+              0.006);
+  ASSERT_TRUE(std::regex_search(two_output, at_once,
+                                std::regex(R"(2 streams at once +[0-9.]+ +([0-9.]+)x)")));
+  EXPECT_NEAR(std::stod(at_once[1]), throughput.at("streams_at_once_fps").get<double>() / one,
+              0.006);
+  EXPECT_EQ(throughput.at("streams").get<int>(), 2);
   EXPECT_FALSE(reports[0].contains("throughput"));
 }
 
