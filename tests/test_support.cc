@@ -135,11 +135,17 @@ bool ffmpeg(const std::string& arguments) {
   return runShell("ffmpeg -nostdin -hide_banner -v error -y " + arguments) == 0;
 }
 
-std::string davisSequence(const std::string& name) {
+std::string davisDataset() {
   const char* data = std::getenv("MOVSEG_DATA");
   const std::string root = data != nullptr ? data : std::string(MOVSEG_SOURCE_DIR) + "/../shared/data";
-  const std::string folder = root + "/davis2016/" + name;
-  return std::filesystem::is_directory(folder + "/frames") ? folder : "";
+  const std::string folder = root + "/davis2016";
+  return std::filesystem::is_directory(folder) ? folder : "";
+}
+
+std::string davisSequence(const std::string& name) {
+  const std::string dataset = davisDataset();
+  const std::string folder = dataset + "/" + name;
+  return !dataset.empty() && std::filesystem::is_directory(folder + "/frames") ? folder : "";
 }
 
 std::vector<std::string> davisFrames(const std::string& name, size_t count) {

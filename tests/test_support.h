@@ -71,8 +71,11 @@ int runShell(const std::string& command);
 // failed or ffmpeg is missing (tests then fail: scripts/install-deps.sh installs it).
 bool ffmpeg(const std::string& arguments);
 
-// The folder of a DAVIS 2016 sequence (frames/, masks/) under $MOVSEG_DATA/davis2016, or the
-// shared data next to the source tree; "" when it is not there (tests then skip).
+// The DAVIS 2016 dataset folder (<sequence>/frames, <sequence>/masks): $MOVSEG_DATA/davis2016,
+// or the shared data next to the source tree; "" when it is not there (tests then skip).
+std::string davisDataset();
+
+// The folder of one of its sequences (frames/, masks/); "" when it is not there.
 std::string davisSequence(const std::string& name);
 
 // The first `count` frame files of that sequence, in order; none when it is not there.

@@ -2,7 +2,6 @@
 // every one of the 15 sequences and their means, as printed there (README: "DAVIS 2016 (15
 // sequences): mean J 0.596, F 0.570", and "J per sequence"). A change that moves them must
 // update README.
-#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -42,9 +41,8 @@ TEST(DenseDavis, BenchGivesReadmesFigures) {
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
   GTEST_SKIP() << "the whole DAVIS run is left to the unsanitized build";
 #endif
-  const std::string folder = test::davisSequence(kReadme[0].sequence);
-  if (folder.empty()) GTEST_SKIP() << "no DAVIS data (set MOVSEG_DATA)";
-  const std::string data = std::filesystem::path(folder).parent_path().string();
+  const std::string data = test::davisDataset();
+  if (data.empty()) GTEST_SKIP() << "no DAVIS data (set MOVSEG_DATA)";
   const test::TempDir dir;
   const test::CommandResult run =
       test::runCli("bench " + data + " --methods dense --json " + dir / "bench.json");

@@ -3,7 +3,6 @@
 // `dense`'s mean J per camera motion and over the 48. A change that moves them must update
 // README.
 #include <cstdlib>
-#include <filesystem>
 #include <fstream>
 #include <map>
 #include <regex>
@@ -29,16 +28,15 @@ TEST(DenseIndependent, BenchGivesReadmesFigures) {
   if (std::getenv("MOVSEG_LONG_TESTS") == nullptr) {
     GTEST_SKIP() << "a long test: MOVSEG_LONG_TESTS=1 (make long-run) runs it";
   }
-  const std::string davis = test::davisSequence("dog");
+  const std::string davis = test::davisDataset();
   if (davis.empty()) GTEST_SKIP() << "no DAVIS data (set MOVSEG_DATA): the generator's textures";
   if (test::runShell("/usr/bin/python3 -c 'import cv2, numpy'") != 0) {
     GTEST_SKIP() << "no Python 3 with cv2 and numpy at /usr/bin/python3";
   }
   const test::TempDir dir;
   const std::string script = std::string(MOVSEG_SOURCE_DIR) + "/scripts/indep_synth.py";
-  const std::string davis_root = std::filesystem::path(davis).parent_path().string();
   ASSERT_EQ(test::runShell("/usr/bin/python3 " + script + " " + dir / "data" +
-                           " --seeds 0-47 --davis " + davis_root),
+                           " --seeds 0-47 --davis " + davis),
             0);
   const test::CommandResult run =
       test::runCli("bench " + dir / "data" + " --methods dense --json " + dir / "bench.json");
