@@ -201,7 +201,7 @@ nlohmann::json rowsJson(const std::vector<BenchRow>& rows) {
     out.push_back({{"sequence", r.sequence}, {"method", r.method}, {"frames", r.score.frames},
                    {"J", r.score.j}, {"J_recall", r.score.j_recall}, {"F", r.score.f},
                    {"error_rate", r.score.error_rate}, {"ms_per_frame", r.ms_per_frame},
-                   {"faults_per_frame", r.faults_per_frame}});
+                   {"x_mog2", r.vs_reference}, {"faults_per_frame", r.faults_per_frame}});
   }
   return out;
 }

@@ -32,6 +32,15 @@ TEST(BenchCli, PaperBeatsMog2ByAClearMarginOnSyntheticVideo) {
     (row.at("method") == "paper" ? paper : mog2) = row.at("J").get<double>();
     EXPECT_GT(row.at("ms_per_frame").get<double>(), 0.0);
   }
+  // x_mog2: a row's time over MOG2's in the same run, as the table's column.
+  const nlohmann::json& means = report.at("means");
+  ASSERT_EQ(means.size(), 2u);
+  const nlohmann::json& paper_row = means[0].at("method") == "paper" ? means[0] : means[1];
+  const nlohmann::json& mog2_row = means[0].at("method") == "paper" ? means[1] : means[0];
+  EXPECT_DOUBLE_EQ(mog2_row.at("x_mog2").get<double>(), 1.0);
+  EXPECT_NEAR(paper_row.at("x_mog2").get<double>(),
+              paper_row.at("ms_per_frame").get<double>() / mog2_row.at("ms_per_frame").get<double>(),
+              1e-9);
   EXPECT_GE(paper, mog2 + 0.2) << "paper J " << paper << ", mog2 J " << mog2;
   EXPECT_GT(paper, 0.7);
 }
