@@ -89,7 +89,7 @@ std::string cpuModel() {
 // a signal): what stays in /tmp after a bench is only its report.
 class ScratchFolder {
  public:
-  ScratchFolder() : path_(fs::temp_directory_path() / ("movseg-bench-" + pid())) {}
+  ScratchFolder() : path_(temporaryFolder() / ("movseg-bench-" + pid())) {}
   ~ScratchFolder() {
     std::error_code error;
     fs::remove_all(path_, error);
@@ -288,13 +288,30 @@ std::vector<BenchRow> benchAll(const std::vector<GtSequence>& sequences,
   return rows;
 }
 
+// A method named twice would be benched twice into one scratch folder.
+void refuseRepeatedMethods(const std::vector<std::string>& methods) {
+  for (size_t i = 0; i < methods.size(); ++i) {
+    if (std::find(methods.begin(), methods.begin() + static_cast<long>(i), methods[i]) !=
+        methods.begin() + static_cast<long>(i)) {
+      throw UsageError("--methods: '" + methods[i] + "' is named twice");
+    }
+  }
+}
+
 void runBench(const BenchOptions& options) {
   // One for the whole bench, from its start: a signal before or between runs is not lost.
   const StopOnSignal stop_on_signal;
   options.params.check();
-  // What cannot be written fails now, not after the whole bench.
-  for (const std::string& report : {options.json_file, options.html_file}) {
-    if (!report.empty()) checkOutputFile(report);
+  // What cannot be written fails now, not after the whole bench; nor does a report go into the
+  // dataset or over the other report.
+  const std::pair<const char*, std::string> reports[] = {{"--json", options.json_file},
+                                                         {"--html", options.html_file}};
+  for (const auto& [option, path] : reports) {
+    refuseWritingIntoInput(option, path, options.data, options.data);
+  }
+  refuseSharedOutputs({reports[0], reports[1]});
+  for (const auto& [option, path] : reports) {
+    if (!path.empty()) checkOutputFile(path);
   }
   const std::vector<GtSequence> sequences = loadGroundTruth(options.data, GtFormat::kAuto);
   for (const GtSequence& s : sequences) {
@@ -384,6 +401,7 @@ void addBenchCommand(CLI::App& app) {
   addParamsOptions(cmd, &options->params, {"method"});
   cmd->callback([options, cmd] {
     refuseEmptyNames(*cmd, {"--json", "--html", "--ignore"});
+    refuseRepeatedMethods(options->methods);
     if (!options->size.empty()) options->resize = benchSize(options->size);
     runBench(*options);
   });

@@ -1,5 +1,6 @@
 #include "commands.h"
 
+#include <cstdlib>
 #include <filesystem>
 #include <regex>
 
@@ -26,6 +27,45 @@ void refuseEmptyNames(const CLI::App& command, std::initializer_list<const char*
       if (value.empty()) throw UsageError(std::string(name) + ": the name is empty");
     }
   }
+}
+
+bool isSameOrInside(const std::string& path, const std::string& base) {
+  const auto normal = [](const std::string& name) {
+    std::error_code error;
+    const fs::path absolute = fs::absolute(name);
+    fs::path full = fs::weakly_canonical(absolute, error);
+    // A link that leads nowhere a path can name (/dev/stdin on a pipe: "pipe:[...]") is taken
+    // as written; an empty path would count as the root of everything.
+    if (error) full = absolute.lexically_normal();
+    return full.filename().empty() ? full.parent_path() : full;  // "frames/" is "frames"
+  };
+  const fs::path p = normal(path), b = normal(base);
+  const auto [end, _] = std::mismatch(b.begin(), b.end(), p.begin(), p.end());
+  return end == b.end();
+}
+
+void refuseSharedOutputs(std::initializer_list<std::pair<const char*, std::string>> outputs) {
+  for (auto a = outputs.begin(); a != outputs.end(); ++a) {
+    for (auto b = std::next(a); b != outputs.end(); ++b) {
+      if (a->second.empty() || b->second.empty()) continue;
+      if (isSameOrInside(a->second, b->second) && isSameOrInside(b->second, a->second)) {
+        throw UsageError(oneLine(std::string(a->first) + " and " + b->first + " both name '" +
+                                 b->second + "'"));
+      }
+    }
+  }
+}
+
+fs::path temporaryFolder() {
+  std::error_code error;
+  fs::path folder = fs::temp_directory_path(error);
+  if (error) {
+    const char* tmpdir = std::getenv("TMPDIR");
+    throw std::runtime_error(oneLine("no folder for temporary files: TMPDIR '" +
+                                     std::string(tmpdir != nullptr ? tmpdir : "") +
+                                     "': " + error.message()));
+  }
+  return folder;
 }
 
 void claimSequenceFolder(const std::string& dir, bool overwrite,

@@ -3,6 +3,7 @@
 // for a command line that cannot be run as given, anything else for a run that failed.
 #pragma once
 
+#include <filesystem>
 #include <initializer_list>
 #include <stdexcept>
 #include <string>
@@ -55,6 +56,18 @@ void refuseEmptyNames(const CLI::App& command, std::initializer_list<const char*
 // with synthetic frames.
 void claimSequenceFolder(const std::string& dir, bool overwrite,
                          std::initializer_list<const char*> owned_folders = {});
+
+// Whether `path` is `base` or lies inside it, once both are made absolute and normal.
+bool isSameOrInside(const std::string& path, const std::string& base);
+
+// Throws UsageError "OPTION and OPTION both name 'PATH'" when two of `outputs` (an option and its
+// path; empty paths are not checked) are one place: the later write would replace the earlier.
+void refuseSharedOutputs(std::initializer_list<std::pair<const char*, std::string>> outputs);
+
+// The folder for temporary files: $TMPDIR, else /tmp. Throws std::runtime_error with one line
+// when it is not a folder (a TMPDIR set to a missing path), asked for only by the commands that
+// write there (`bench`'s scratch runs, `demo`'s default folder), so that the others never mind.
+std::filesystem::path temporaryFolder();
 
 // The help of --overwrite for `synth` and `demo`.
 constexpr char kOverwriteSequenceHelp[] =

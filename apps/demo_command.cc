@@ -19,7 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct DemoOptions {
-  std::string dir = (fs::temp_directory_path() / "movseg-demo").string();
+  std::string dir;         // -o; without it, movseg-demo in the folder for temporary files
   bool overwrite = false;  // true for the default folder: the demo's own, each run replaces it
   SynthOptions synth;
   Params params;
@@ -60,8 +60,8 @@ void addDemoCommand(CLI::App& app) {
       "demo", "Generate a synthetic moving-camera clip, segment it, print the result");
   cmd->add_option(
          "-o,--output", options->dir,
-         "Folder for the clip, masks and overlays (the default one is replaced on each run)")
-      ->capture_default_str();
+         "Folder for the clip, masks and overlays (default: movseg-demo in $TMPDIR or /tmp, "
+         "replaced on each run)");
   cmd->add_flag("--overwrite", options->overwrite, kOverwriteSequenceHelp);
   cmd->add_option("--frames", options->synth.frames,
                   "Frames of the clip, at least 2 (the first has no motion to score)")
@@ -81,7 +81,10 @@ void addDemoCommand(CLI::App& app) {
             std::to_string(options->synth.frames) + ")");
       }
     });
-    if (cmd->count("-o") == 0) options->overwrite = true;
+    if (cmd->count("-o") == 0) {
+      options->dir = (temporaryFolder() / "movseg-demo").string();
+      options->overwrite = true;
+    }
     runDemo(*options);
   });
 }

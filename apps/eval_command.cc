@@ -93,8 +93,8 @@ void writeReport(const EvalOptions& options, const std::vector<GtSequence>& sequ
                   runs);
 }
 
-// The report files: none inside PRED or GT, where it could replace a mask, and each one
-// writable before the scoring rather than after it.
+// The report files: none inside PRED or GT, where it could replace a mask, no two in one file,
+// and each one writable before the scoring rather than after it.
 void checkReportPaths(const EvalOptions& options) {
   const std::pair<const char*, std::string> reports[] = {
       {"--json", options.json_file}, {"--csv", options.csv_file}, {"--html", options.html_file}};
@@ -103,6 +103,7 @@ void checkReportPaths(const EvalOptions& options) {
       refuseWritingIntoInput(option, path, input, input);
     }
   }
+  refuseSharedOutputs({reports[0], reports[1], reports[2]});
   for (const auto& [option, path] : reports) {
     if (!path.empty()) checkOutputFile(path);
   }

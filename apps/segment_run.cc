@@ -59,19 +59,31 @@ bool isVideoPath(const std::string& path) {
 
 // ---- paths ------------------------------------------------------------------------------------
 
-// Whether `path` is `base` or lies inside it, once both are made absolute and normal.
-bool isSameOrInside(const std::string& path, const std::string& base) {
-  const auto normal = [](const std::string& name) {
-    std::error_code error;
-    const fs::path full = fs::weakly_canonical(fs::absolute(name), error);
-    return full.filename().empty() ? full.parent_path() : full;  // "frames/" is "frames"
-  };
-  const fs::path p = normal(path), b = normal(base);
-  const auto [end, _] = std::mismatch(b.begin(), b.end(), p.begin(), p.end());
-  return end == b.end();
+bool isSamePlace(const std::string& a, const std::string& b) {
+  return isSameOrInside(a, b) && isSameOrInside(b, a);
 }
 
-// Refuses outputs that would overwrite the input, and empty or unknown output names.
+// Refuses --stats or --overlay where the run writes its own files: the output folder (overlay
+// pictures there would replace the masks), its manifest or one of its masks.
+void refuseOverwritingTheRun(const SegmentOptions& options) {
+  for (const auto& [option, path] : {std::pair<const char*, std::string>{"--stats", options.stats_file},
+                                     {"--overlay", options.overlay}}) {
+    if (path.empty()) continue;
+    const fs::path folder = fs::path(path).parent_path();
+    const std::string name = fs::path(path).filename().string();
+    const bool in_output_folder =
+        isSamePlace(folder.empty() ? "." : folder.string(), options.output_dir);
+    if (isSamePlace(path, options.output_dir) ||
+        (in_output_folder && (name == kManifestName || isFrameFileName(name)))) {
+      throw UsageError(oneLine(std::string(option) + " '" + path +
+                               "' would overwrite the masks or the manifest in -o '" +
+                               options.output_dir + "'"));
+    }
+  }
+}
+
+// Refuses outputs that would overwrite the input, the run's own files or one another, and empty
+// or unknown output names.
 void checkOutputPaths(const SegmentOptions& options) {
   if (options.output_dir.empty()) throw UsageError("the output folder (-o) is empty");
   const std::string input = inputPath(options.input);
@@ -80,6 +92,8 @@ void checkOutputPaths(const SegmentOptions& options) {
   for (const auto& [option, path] : outputs) {
     refuseWritingIntoInput(option, path, options.input, input);
   }
+  refuseSharedOutputs({{"--stats", options.stats_file}, {"--overlay", options.overlay}});
+  refuseOverwritingTheRun(options);
   const fs::path overlay(options.overlay);
   std::error_code error;
   if (!options.overlay.empty() && overlay.has_extension() && !isVideoPath(options.overlay) &&
@@ -645,7 +659,7 @@ std::vector<SegmentOptions> perInputRuns(const SegmentOptions& shared,
   if (shared.show) throw UsageError("--show takes one input");
   for (const auto& [option, name] : {std::pair<const char*, std::string>{"--stats", shared.stats_file},
                                      {"--overlay", shared.overlay}}) {
-    if (fs::path(name).has_parent_path()) {
+    if (fs::path(name).has_parent_path() || name == "." || name == "..") {
       throw UsageError(std::string(option) + " '" + name +
                        "': with several inputs, a file name written in each input's folder");
     }

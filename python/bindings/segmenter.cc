@@ -139,8 +139,11 @@ void bindSegmenter(py::module_& module) {
   py::class_<PyStream>(module, "StreamSegmenter",
                        "Segments one stream on two threads: while a frame is segmented, the next "
                        "is analysed. Masks identical to Segmenter's, one push later.")
-      .def(py::init([](const Params& p, int threads) {
-             return std::make_unique<PyStream>(std::in_place, p, threads);
+      .def(py::init([](const Params& p, long long threads) {
+             // Taken wide, so that a count beyond int is refused as any other one (ValueError),
+             // not by pybind11's conversion (TypeError).
+             const int count = threads == static_cast<int>(threads) ? static_cast<int>(threads) : 0;
+             return std::make_unique<PyStream>(std::in_place, p, count);
            }),
            py::arg("params") = Params(), py::arg("threads") = 2,
            "threads: 2, or 1 (the same work in turn on the calling thread). Raises ValueError "

@@ -144,15 +144,18 @@ std::string frameFileName(int index) {
   return name;
 }
 
+bool isFrameFileName(const std::string& name) {
+  const fs::path path(name);
+  const std::string stem = path.stem().string();
+  return path.extension() == ".png" && stem.size() >= 5 &&
+         std::all_of(stem.begin(), stem.end(), [](unsigned char c) { return std::isdigit(c); });
+}
+
 std::vector<std::string> frameFilesIn(const std::string& folder) {
   std::vector<std::string> files;
   std::error_code error;
   for (const auto& entry : fs::directory_iterator(folder, error)) {
-    const std::string stem = entry.path().stem().string();
-    if (entry.path().extension() == ".png" && stem.size() >= 5 &&
-        std::all_of(stem.begin(), stem.end(), [](unsigned char c) { return std::isdigit(c); })) {
-      files.push_back(entry.path().string());
-    }
+    if (isFrameFileName(entry.path().filename().string())) files.push_back(entry.path().string());
   }
   return files;
 }

@@ -32,8 +32,11 @@ void makeOutputFolder(const std::string& path);
 // 00001.png, ..., more digits from 100000 on.
 std::string frameFileName(int index);
 
-// The files of `folder` named as frameFileName() names them (five or more digits, .png), in no
-// particular order; none when the folder does not exist. What a run wrote there, to be replaced.
+// Whether `name` (a file name, no folder) is one frameFileName() gives: five or more digits, .png.
+bool isFrameFileName(const std::string& name);
+
+// The files of `folder` named as frameFileName() names them, in no particular order; none when
+// the folder does not exist. What a run wrote there, to be replaced.
 std::vector<std::string> frameFilesIn(const std::string& folder);
 
 // A text file grown line by line under PATH.part and renamed to PATH by close() (a device or FIFO

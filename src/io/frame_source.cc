@@ -4,7 +4,11 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <stdexcept>
+#include <vector>
+
+#include <zlib.h>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
@@ -207,10 +211,50 @@ bool isTruncatedJpeg(const std::string& path) {
   return true;
 }
 
+std::uint32_t bigEndian32(const unsigned char* bytes) {
+  return std::uint32_t{bytes[0]} << 24 | std::uint32_t{bytes[1]} << 16 |
+         std::uint32_t{bytes[2]} << 8 | bytes[3];
+}
+
+// A PNG file (it starts with the PNG signature) that libpng would refuse: its chunks do not run
+// whole up to IEND (a file cut short), a critical chunk's CRC does not match (libpng only warns
+// of an ancillary one's, and decodes the image), or the header's size is
+// beyond libpng's default limits (1,000,000 pixels a side, which OpenCV keeps). libpng prints
+// each such error on stderr before OpenCV sees it, and the CLI's errors are one line.
+bool isDamagedPng(const std::string& path) {
+  static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  constexpr std::uint32_t kMaxSide = 1000000;
+  std::ifstream file(path, std::ios::binary);
+  const std::vector<unsigned char> bytes{std::istreambuf_iterator<char>(file), {}};
+  if (bytes.size() < 8 || !std::equal(kSignature, kSignature + 8, bytes.begin())) return false;
+  size_t at = 8;
+  for (bool first = true;; first = false) {
+    if (bytes.size() - at < 12) return true;  // a chunk's length, type and CRC at least
+    const std::uint32_t length = bigEndian32(&bytes[at]);
+    if (length > bytes.size() - at - 12) return true;
+    const unsigned char* type = &bytes[at + 4];
+    const bool critical = (type[0] & 0x20) == 0;  // an upper-case first letter: IHDR, IDAT, ...
+    if (critical && crc32(crc32(0L, Z_NULL, 0), type, 4 + length) != bigEndian32(type + 4 + length)) {
+      return true;
+    }
+    const std::string name(type, type + 4);
+    if (first) {
+      if (name != "IHDR" || length != 13) return true;
+      const std::uint32_t width = bigEndian32(type + 4), height = bigEndian32(type + 8);
+      if (width == 0 || height == 0 || width > kMaxSide || height > kMaxSide) return true;
+    }
+    if (name == "IEND") return false;
+    at += 12 + length;
+  }
+}
+
 }  // namespace
 
 cv::Mat decodeImage(const std::string& path, int flags) {
-  if (isTruncatedJpeg(path)) return cv::Mat();
+  // Only a regular file: a FIFO or a device would block the read, or never end.
+  std::error_code error;
+  if (!fs::is_regular_file(path, error)) return cv::Mat();
+  if (isTruncatedJpeg(path) || isDamagedPng(path)) return cv::Mat();
   try {
     return cv::imread(path, flags);
   } catch (const cv::Exception&) {

@@ -1,9 +1,16 @@
 #include "io/video_decoder.h"
 
+#include <fcntl.h>
+#include <poll.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <climits>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <stdexcept>
 
 #include <opencv2/core.hpp>
@@ -55,6 +62,57 @@ std::string errorText(int code) {
   return text;
 }
 
+// A pipe's bytes for FFmpeg, read as they come. FFmpeg's own file protocol opens and reads a
+// FIFO with blocking calls, which no deadline and no signal interrupt: a FIFO without a writer,
+// or one whose writer stalls, would hang the run for ever. Opened without waiting for a writer,
+// polled in slices of 50 ms, between which the decoder's deadline and stop flag are asked.
+class FifoInput {
+ public:
+  FifoInput(const std::string& path, VideoDecoder* decoder) : decoder_(decoder) {
+    fd_ = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd_ < 0) throw std::runtime_error(std::strerror(errno));
+    constexpr int kBufferSize = 1 << 16;
+    auto* buffer = static_cast<unsigned char*>(av_malloc(kBufferSize));
+    io_ = buffer == nullptr ? nullptr
+                            : avio_alloc_context(buffer, kBufferSize, 0, this, readSome, nullptr, nullptr);
+    if (io_ == nullptr) {
+      av_free(buffer);
+      ::close(fd_);
+      throw std::bad_alloc();
+    }
+  }
+  ~FifoInput() {
+    av_freep(&io_->buffer);
+    avio_context_free(&io_);
+    ::close(fd_);
+  }
+  FifoInput(const FifoInput&) = delete;
+  FifoInput& operator=(const FifoInput&) = delete;
+  AVIOContext* io() const { return io_; }
+
+ private:
+  // What FFmpeg asks for: up to `size` bytes, AVERROR_EOF once the writer has hung up,
+  // AVERROR_EXIT at the deadline or a stop.
+  static int readSome(void* opaque, uint8_t* buffer, int size) {
+    auto* self = static_cast<FifoInput*>(opaque);
+    for (;;) {
+      if (self->decoder_->shouldGiveUp()) return AVERROR_EXIT;
+      pollfd watch{self->fd_, POLLIN, 0};
+      const int ready = ::poll(&watch, 1, 50);
+      if (ready < 0 && errno != EINTR) return AVERROR(errno);
+      if (ready <= 0) continue;
+      const ssize_t n = ::read(self->fd_, buffer, static_cast<size_t>(size));
+      if (n > 0) return static_cast<int>(n);
+      if (n == 0 && (watch.revents & POLLHUP) != 0) return AVERROR_EOF;
+      if (n < 0 && errno != EAGAIN && errno != EINTR) return AVERROR(errno);
+    }
+  }
+
+  VideoDecoder* decoder_;
+  int fd_ = -1;
+  AVIOContext* io_ = nullptr;
+};
+
 int clampedCount(double count) {
   return std::isfinite(count) && count > 0 ? static_cast<int>(std::min<double>(count, INT_MAX)) : -1;
 }
@@ -67,6 +125,7 @@ struct VideoDecoder::FFmpeg {
   AVFrame* frame = av_frame_alloc();
   AVPacket* packet = av_packet_alloc();
   SwsContext* sws = nullptr;
+  std::unique_ptr<FifoInput> fifo;  // the input's bytes when it is a FIFO; outlives `format`
   int stream = -1;
   ~FFmpeg() {
     sws_freeContext(sws);
@@ -96,6 +155,12 @@ void VideoDecoder::open(const std::string& url) {
   ff_->format = avformat_alloc_context();
   if (ff_->format == nullptr) throw std::bad_alloc();
   ff_->format->interrupt_callback = {onFfmpegPoll, this};
+  std::error_code error;
+  if (std::filesystem::is_fifo(url, error)) {
+    ff_->fifo = std::make_unique<FifoInput>(url, this);
+    ff_->format->pb = ff_->fifo->io();
+    ff_->format->flags |= AVFMT_FLAG_CUSTOM_IO;
+  }
   int r = avformat_open_input(&ff_->format, url.c_str(), nullptr, nullptr);  // frees on failure
   if (r < 0) fail(r);
   if ((r = avformat_find_stream_info(ff_->format, nullptr)) < 0) fail(r);

@@ -77,6 +77,6 @@ def test_reset_params_and_bad_arguments(frames):
     assert stream.flush().diagnostics.first_frame
     with pytest.raises(ValueError):
         stream.push(np.zeros((8, 8, 2), np.uint8))
-    for threads in (0, 3):
+    for threads in (0, 3, -1, 2**32 + 2, 2**40):  # beyond int: the same error, not a TypeError
         with pytest.raises(ValueError, match="threads"):
             movseg.StreamSegmenter(threads=threads)

@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <zlib.h>
 
 #include "reliability/reliability_fixture.h"
 #include "test_support.h"
@@ -225,6 +226,81 @@ TEST(InputFaults, SpecialFilesAreNamedForWhatTheyAre) {
   writer.join();
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(fs::exists(dir / "out/00005.png"));
+}
+
+// A FIFO waits for its writer and its bytes as a network stream does: with no writer, or a
+// writer that stalls, the run fails at --timeout, and a signal stops it at once. (FFmpeg's own
+// file protocol blocks in open() and read(), where neither the deadline nor a signal reach.)
+TEST(InputFaults, AFifoWithoutAWriterOrWithAStalledOneFailsAtTheTimeout) {
+  const test::TempDir dir;
+  const std::string fifo = dir / "fifo";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  auto start = Clock::now();
+  test::expectOneLineError(test::runCli("segment " + fifo + " -o " + dir / "out" + " --timeout 1"),
+                           "no answer within the timeout", test::kExitRunFailed);
+  EXPECT_LT(Clock::now() - start, std::chrono::seconds(8));
+  EXPECT_FALSE(fs::exists(dir / "out/00000.png"));
+
+  { std::ofstream(dir / "half.ts", std::ios::binary) << firstHalfOfAVideo(dir, "v.ts"); }
+  std::thread writer(
+      [&] { test::runShell("sh -c '(cat " + dir / "half.ts" + "; sleep 4) > " + fifo + "'"); });
+  start = Clock::now();
+  const test::CommandResult stalled =
+      test::runCli("segment " + fifo + " -o " + dir / "stalled" + " -q --timeout 1");
+  const auto stalled_after = Clock::now() - start;
+  writer.join();
+  test::expectOneLineError(stalled, "the stream stalled", test::kExitRunFailed);
+  EXPECT_LT(stalled_after, std::chrono::seconds(4));  // before the writer's silence ends
+  EXPECT_TRUE(fs::exists(dir / "stalled/00005.png"));
+
+  const pid_t pid = test::startCli({"segment", fifo, "-o", dir / "signalled", "-q", "--timeout", "0"},
+                                   dir / "log.txt");
+  ASSERT_GT(pid, 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // waiting for a writer
+  kill(pid, SIGINT);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+}
+
+// A video piped to /dev/stdin is a FIFO like any other, not an input that -o lies inside.
+TEST(InputFaults, AVideoPipedToStdinIsSegmented) {
+  const test::TempDir dir;
+  const std::string video = h264(dir, "v.mkv", "160x120", 6);
+  EXPECT_EQ(test::runShell("sh -c 'cat " + video + " | " + MOVSEG_CLI_PATH + " segment /dev/stdin -o " +
+                           dir / "out" + " -q'"),
+            0);
+  EXPECT_TRUE(fs::exists(dir / "out/00005.png"));
+}
+
+// A PNG frame cut short, with a corrupt chunk or with a header beyond libpng's limits is a
+// corrupt image in one line: libpng's own error would be a second line on stderr.
+TEST(InputFaults, ADamagedPngFrameIsACorruptImageInOneLine) {
+  const test::TempDir dir;
+  std::vector<uchar> png;
+  ASSERT_TRUE(cv::imencode(".png", test::texture({96, 72}, 0), png));
+  const std::string whole(png.begin(), png.end());
+  std::string corrupt = whole;
+  corrupt[corrupt.size() / 2] = static_cast<char>(~corrupt[corrupt.size() / 2]);  // in IDAT
+  std::string huge = whole;  // IHDR's width (bytes 16-19) 2^31 - 1 and its CRC (29-32) made good
+  huge.replace(16, 4, "\x7f\xff\xff\xff");
+  const uLong crc = crc32(crc32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(&huge[12]), 17);
+  for (int i = 0; i < 4; ++i) huge[static_cast<size_t>(29 + i)] = static_cast<char>(crc >> (24 - 8 * i));
+  const std::pair<const char*, std::string> cases[] = {
+      {"cut-short", whole.substr(0, whole.size() / 3)}, {"corrupt", corrupt}, {"huge", huge}};
+  for (const auto& [name, bytes] : cases) {
+    SCOPED_TRACE(name);
+    const std::string frames = dir / name;
+    fs::create_directory(frames);
+    for (int t = 0; t < 3; ++t) {
+      ASSERT_TRUE(cv::imwrite(frames + "/0000" + std::to_string(t) + ".png", test::texture({96, 72}, t)));
+    }
+    std::ofstream(frames + "/00002.png", std::ios::binary | std::ios::trunc) << bytes;
+    const test::CommandResult r = test::runCli("segment " + frames + " -o " + frames + "-out");
+    test::expectOneLineError(r, "cannot decode image '" + frames + "/00002.png'", test::kExitRunFailed);
+    EXPECT_TRUE(fs::exists(frames + "-out/00001.png"));
+  }
 }
 
 // One input grammar: a frames folder, its sequence folder, and a printf pattern give the same.

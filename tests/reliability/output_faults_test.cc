@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -152,6 +153,8 @@ TEST_F(OutputFaults, OutputsInsideTheInputAreRefused) {
       {"segment " + frames() + "/%05d.png -o " + frames(), "-o"},
       {"segment " + frames() + " -o ''", "empty"},
       {"segment " + frames() + " -o " + dir_ / "out" + " --stats ''", "empty"},
+      {"bench " + (*clip_ / "clip") + " --methods diff --json " + frames() + "/t.json", "--json"},
+      {"bench " + (*clip_ / "clip") + " --methods diff --html " + frames() + "/t.html", "--html"},
   };
   for (const auto& [arguments, named] : cases) {
     SCOPED_TRACE(arguments);
@@ -160,6 +163,62 @@ TEST_F(OutputFaults, OutputsInsideTheInputAreRefused) {
   EXPECT_EQ(fs::file_size(video), size);
   EXPECT_EQ(test::filesIn(frames()).size(), 12u);
   EXPECT_FALSE(fs::exists(dir_ / "out/00000.png"));
+}
+
+// Outputs that would replace one another, or the run's own files (its masks, its manifest), are
+// refused before the work, as outputs inside the input are; a stats file beside the masks is not.
+TEST_F(OutputFaults, OutputsThatWouldReplaceEachOtherOrTheRunsFilesAreRefused) {
+  const std::string out = dir_ / "out", masks = *clip_ / "clip/masks", data = *clip_ / "clip";
+  fs::copy(frames(), dir_ / "other");
+  const std::string two_inputs = "segment " + frames() + " " + dir_ / "other" + " -o " + out;
+  const std::pair<std::string, std::string> cases[] = {
+      {"segment " + frames() + " -o " + out + " --overlay " + out, "would overwrite the masks"},
+      {"segment " + frames() + " -o " + out + " --overlay " + out + "/", "would overwrite the masks"},
+      {"segment " + frames() + " -o " + out + " --stats " + out + "/movseg-run.json", "--stats"},
+      {"segment " + frames() + " -o " + out + " --stats " + out + "/00003.png", "--stats"},
+      {"segment " + frames() + " -o " + out + " --overlay " + dir_ / "a.mp4" + " --stats " +
+           dir_ / "a.mp4", "--stats and --overlay both name"},
+      {two_inputs + " --overlay .", "a file name written in each input's folder"},
+      {two_inputs + " --overlay ..", "a file name written in each input's folder"},
+      {"eval " + masks + " " + masks + " --json " + dir_ / "r" + " --csv " + dir_ / "r", "both name"},
+      {"eval " + masks + " " + masks + " --json " + dir_ / "r" + " --html " + dir_ / "./r", "both name"},
+      {"bench " + data + " --methods diff --json " + dir_ / "r" + " --html " + dir_ / "r", "both name"},
+      {"bench " + data + " --methods diff,diff --threads 2", "'diff' is named twice"},
+  };
+  for (const auto& [arguments, named] : cases) {
+    SCOPED_TRACE(arguments);
+    test::expectOneLineError(test::runCli(arguments), named, test::kExitUsage);
+  }
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_FALSE(fs::exists(dir_ / "r"));
+
+  const test::CommandResult beside =
+      test::runCli("segment " + frames() + " -o " + out + " --stats " + out + "/stats.jsonl -q");
+  ASSERT_EQ(beside.exit_code, 0) << beside.output;
+  EXPECT_EQ(wholeJsonLines(out + "/stats.jsonl"), 12);
+  EXPECT_EQ(test::filesIn(out).size(), 14u);  // 12 masks, the manifest, the stats
+}
+
+// The folder for temporary files is asked for only by the commands that write there: a TMPDIR
+// that does not exist fails those in one line, and the others run.
+TEST_F(OutputFaults, AMissingTemporaryFolderFailsOnlyTheCommandsThatWriteThere) {
+  const char* was = std::getenv("TMPDIR");
+  const std::string previous = was != nullptr ? was : "";
+  ::setenv("TMPDIR", (dir_ / "missing").c_str(), 1);
+  const test::CommandResult version = test::runCli("--version");
+  const test::CommandResult synth = test::runCli("synth -o " + dir_ / "s" + " --frames 2");
+  const test::CommandResult demo = test::runCli("demo --frames 2");
+  const test::CommandResult bench = test::runCli("bench " + (*clip_ / "clip") + " --methods diff");
+  if (was != nullptr) {
+    ::setenv("TMPDIR", previous.c_str(), 1);
+  } else {
+    ::unsetenv("TMPDIR");
+  }
+  EXPECT_EQ(version.exit_code, 0) << version.output;
+  EXPECT_EQ(synth.exit_code, 0) << synth.output;
+  test::expectOneLineError(demo, "no folder for temporary files: TMPDIR '" + dir_ / "missing",
+                           test::kExitRunFailed);
+  test::expectOneLineError(bench, "no folder for temporary files", test::kExitRunFailed);
 }
 
 // Empty names are refused by every command, not taken as "none" or as the filesystem's root.
