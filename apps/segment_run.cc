@@ -221,8 +221,7 @@ class OverlayWriter {
     fps_ = std::isfinite(fps) && fps > 0 && fps <= 1000 ? fps : 25.0;
     if (target_.empty()) return;
     if (isVideoPath(target_)) {
-      const fs::path p(target_);
-      temporary_ = (p.parent_path() / (p.stem().string() + ".part" + p.extension().string())).string();
+      temporary_ = temporaryPath(target_, /*keep_extension=*/true);
     } else {
       makeOutputFolder(target_);
     }

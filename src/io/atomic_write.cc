@@ -83,6 +83,21 @@ int writeAndClose(int fd, const char* data, size_t size) {
   return error;
 }
 
+}  // namespace
+
+std::string temporaryPath(const std::string& path, bool keep_extension) {
+  constexpr size_t kMaxName = 255;  // NAME_MAX on Linux's file systems
+  constexpr char kMark[] = ".part";
+  const fs::path p(path);
+  const std::string extension = keep_extension ? p.extension().string() : "";
+  std::string stem = keep_extension ? p.stem().string() : p.filename().string();
+  const size_t room = kMaxName - (sizeof kMark - 1) - std::min(extension.size(), kMaxName / 2);
+  if (stem.size() > room) stem.resize(room);
+  return (p.parent_path() / (stem + kMark + extension)).string();
+}
+
+namespace {
+
 void writeBytesAtomic(const std::string& path, const char* data, size_t size) {
   const Target target = resolveTarget(path);
   if (target.in_place) {
@@ -90,7 +105,7 @@ void writeBytesAtomic(const std::string& path, const char* data, size_t size) {
     if (error != 0) throw writeError(path, error);
     return;
   }
-  const std::string temporary = target.path + ".part";
+  const std::string temporary = temporaryPath(target.path);
   const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) throw writeError(path, errno);
   const int error = writeAndClose(fd, data, size);
@@ -122,7 +137,7 @@ void writeTextAtomic(const std::string& path, const std::string& text) {
 void checkOutputFile(const std::string& path) {
   const Target target = resolveTarget(path);
   if (target.in_place) return;  // opening a FIFO to try it would give its reader an end of file
-  const std::string temporary = target.path + ".part";
+  const std::string temporary = temporaryPath(target.path);
   const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
   if (fd < 0) throw writeError(path, errno);
   ::close(fd);
@@ -168,7 +183,7 @@ LineFile::LineFile(std::string path) : path_(std::move(path)) {
     fd_ = openInPlace(target, path_);
     return;
   }
-  fd_ = ::open((target_ + ".part").c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  fd_ = ::open(temporaryPath(target_).c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd_ < 0) throw writeError(path_, errno);
 }
 
@@ -191,7 +206,7 @@ void LineFile::close() {
   const int fd = fd_;
   fd_ = -1;
   if (::close(fd) != 0) throw writeError(path_, errno);
-  if (!in_place_) renameOver(target_ + ".part", target_, path_);
+  if (!in_place_) renameOver(temporaryPath(target_), target_, path_);
 }
 
 }  // namespace movseg

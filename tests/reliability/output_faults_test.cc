@@ -199,6 +199,19 @@ TEST_F(OutputFaults, OutputsThatWouldReplaceEachOtherOrTheRunsFilesAreRefused) {
   EXPECT_EQ(test::filesIn(out).size(), 14u);  // 12 masks, the manifest, the stats
 }
 
+// An output named with all the 255 bytes a file name may have is written: its temporary name
+// (NAME.part) is cut to fit, not refused as too long.
+TEST_F(OutputFaults, OutputsWithTheLongestLegalNamesAreWritten) {
+  const std::string stats = dir_ / (std::string(250, 's') + ".json");
+  const std::string overlay = dir_ / (std::string(251, 'v') + ".mp4");
+  const test::CommandResult r = test::runCli("segment " + frames() + " -o " + dir_ / "out" +
+                                             " -q --stats " + stats + " --overlay " + overlay);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(wholeJsonLines(stats), 12);
+  EXPECT_GT(fs::file_size(overlay), 0u);
+  EXPECT_FALSE(anyPartFile(dir_.path()));
+}
+
 // The folder for temporary files is asked for only by the commands that write there: a TMPDIR
 // that does not exist fails those in one line, and the others run.
 TEST_F(OutputFaults, AMissingTemporaryFolderFailsOnlyTheCommandsThatWriteThere) {
