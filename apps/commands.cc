@@ -44,11 +44,15 @@ bool isSameOrInside(const std::string& path, const std::string& base) {
   return end == b.end();
 }
 
+bool isSamePlace(const std::string& a, const std::string& b) {
+  return isSameOrInside(a, b) && isSameOrInside(b, a);
+}
+
 void refuseSharedOutputs(std::initializer_list<std::pair<const char*, std::string>> outputs) {
   for (auto a = outputs.begin(); a != outputs.end(); ++a) {
     for (auto b = std::next(a); b != outputs.end(); ++b) {
       if (a->second.empty() || b->second.empty()) continue;
-      if (isSameOrInside(a->second, b->second) && isSameOrInside(b->second, a->second)) {
+      if (isSamePlace(a->second, b->second)) {
         throw UsageError(oneLine(std::string(a->first) + " and " + b->first + " both name '" +
                                  b->second + "'"));
       }

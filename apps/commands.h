@@ -60,6 +60,9 @@ void claimSequenceFolder(const std::string& dir, bool overwrite,
 // Whether `path` is `base` or lies inside it, once both are made absolute and normal.
 bool isSameOrInside(const std::string& path, const std::string& base);
 
+// Whether `a` and `b` name one place, once both are made absolute and normal.
+bool isSamePlace(const std::string& a, const std::string& b);
+
 // Throws UsageError "OPTION and OPTION both name 'PATH'" when two of `outputs` (an option and its
 // path; empty paths are not checked) are one place: the later write would replace the earlier.
 void refuseSharedOutputs(std::initializer_list<std::pair<const char*, std::string>> outputs);

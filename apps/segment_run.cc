@@ -59,10 +59,6 @@ bool isVideoPath(const std::string& path) {
 
 // ---- paths ------------------------------------------------------------------------------------
 
-bool isSamePlace(const std::string& a, const std::string& b) {
-  return isSameOrInside(a, b) && isSameOrInside(b, a);
-}
-
 // Refuses --stats or --overlay where the run writes its own files: the output folder (overlay
 // pictures there would replace the masks), its manifest or one of its masks.
 void refuseOverwritingTheRun(const SegmentOptions& options) {
