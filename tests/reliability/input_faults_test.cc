@@ -286,12 +286,13 @@ TEST(InputFaults, AFifoWithoutAWriterOrWithAStalledOneFailsAtTheTimeout) {
   EXPECT_EQ(WEXITSTATUS(status), 130);
 }
 
-// A video piped to /dev/stdin is a FIFO like any other, not an input that -o lies inside.
+// A video piped to /dev/stdin (README: `ffmpeg ... -f mpegts - | movseg segment /dev/stdin`) is a
+// FIFO like any other, not an input that -o lies inside.
 TEST(InputFaults, AVideoPipedToStdinIsSegmented) {
   const test::TempDir dir;
   const std::string video = h264(dir, "v.mkv", "160x120", 6);
-  EXPECT_EQ(test::runShell("sh -c 'cat " + video + " | " + MOVSEG_CLI_PATH + " segment /dev/stdin -o " +
-                           dir / "out" + " -q'"),
+  EXPECT_EQ(test::runShell("sh -c 'ffmpeg -loglevel error -i " + video + " -c copy -f mpegts - | " +
+                           MOVSEG_CLI_PATH + " segment /dev/stdin -o " + dir / "out" + " -q'"),
             0);
   EXPECT_TRUE(fs::exists(dir / "out/00005.png"));
 }
