@@ -263,6 +263,11 @@ TEST(InputFaults, AFifoWithoutAWriterOrWithAStalledOneFailsAtTheTimeout) {
                            "no answer within the timeout", test::kExitRunFailed);
   EXPECT_LT(Clock::now() - start, std::chrono::seconds(8));
   EXPECT_FALSE(fs::exists(dir / "out/00000.png"));
+  // Nor does a FIFO named as the image of what is fixed to the camera hang the run.
+  ASSERT_TRUE(cv::imwrite(dir / "00000.png", test::texture({64, 48}, 0)));
+  test::expectOneLineError(test::runCli("segment " + dir / "00000.png" + " -o " + dir / "ignoring" +
+                                        " --ignore " + fifo),
+                           "--ignore: cannot decode image", test::kExitRunFailed);
 
   const auto previous_sigpipe = std::signal(SIGPIPE, SIG_IGN);
   std::atomic<bool> release{false};
