@@ -302,17 +302,8 @@ void runBench(const BenchOptions& options) {
   // One for the whole bench, from its start: a signal before or between runs is not lost.
   const StopOnSignal stop_on_signal;
   options.params.check();
-  // What cannot be written fails now, not after the whole bench; nor does a report go into the
-  // dataset or over the other report.
-  const std::pair<const char*, std::string> reports[] = {{"--json", options.json_file},
-                                                         {"--html", options.html_file}};
-  for (const auto& [option, path] : reports) {
-    refuseWritingIntoInput(option, path, options.data, options.data);
-  }
-  refuseSharedOutputs({reports[0], reports[1]});
-  for (const auto& [option, path] : reports) {
-    if (!path.empty()) checkOutputFile(path);
-  }
+  // What cannot be written fails now, not after the whole bench; none inside the dataset.
+  checkReportPaths({{"--json", options.json_file}, {"--html", options.html_file}}, {options.data});
   const std::vector<GtSequence> sequences = loadGroundTruth(options.data, GtFormat::kAuto);
   for (const GtSequence& s : sequences) {
     if (s.frames_dir.empty()) {

@@ -93,24 +93,11 @@ void writeReport(const EvalOptions& options, const std::vector<GtSequence>& sequ
                   runs);
 }
 
-// The report files: none inside PRED or GT, where it could replace a mask, no two in one file,
-// and each one writable before the scoring rather than after it.
-void checkReportPaths(const EvalOptions& options) {
-  const std::pair<const char*, std::string> reports[] = {
-      {"--json", options.json_file}, {"--csv", options.csv_file}, {"--html", options.html_file}};
-  for (const auto& [option, path] : reports) {
-    for (const std::string& input : {options.pred, options.gt}) {
-      refuseWritingIntoInput(option, path, input, input);
-    }
-  }
-  refuseSharedOutputs({reports[0], reports[1], reports[2]});
-  for (const auto& [option, path] : reports) {
-    if (!path.empty()) checkOutputFile(path);
-  }
-}
-
 void runEval(const EvalOptions& options) {
-  checkReportPaths(options);
+  // Before the scoring rather than after it; none inside PRED or GT.
+  checkReportPaths(
+      {{"--json", options.json_file}, {"--csv", options.csv_file}, {"--html", options.html_file}},
+      {options.pred, options.gt});
   std::error_code error;
   if (!std::filesystem::is_directory(options.pred, error)) {
     throw std::runtime_error("prediction folder '" + options.pred + "' does not exist");

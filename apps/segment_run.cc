@@ -502,6 +502,17 @@ void refuseWritingIntoInput(const std::string& option, const std::string& path,
   }
 }
 
+void checkReportPaths(std::initializer_list<std::pair<const char*, std::string>> reports,
+                      std::initializer_list<std::string> inputs) {
+  for (const auto& [option, path] : reports) {
+    for (const std::string& input : inputs) refuseWritingIntoInput(option, path, input, input);
+  }
+  refuseSharedOutputs(reports);
+  for (const auto& [option, path] : reports) {
+    if (!path.empty()) checkOutputFile(path);
+  }
+}
+
 StopOnSignal::StopOnSignal() {
   const std::lock_guard<std::mutex> lock(g_signal_mutex);
   if (g_signal_scopes++ > 0) return;

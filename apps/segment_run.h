@@ -3,7 +3,9 @@
 
 #include <chrono>
 #include <functional>
+#include <initializer_list>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -80,6 +82,12 @@ class StopOnSignal {
 // inside it, once both are made absolute and normal. Empty names are not checked.
 void refuseWritingIntoInput(const std::string& option, const std::string& path,
                             const std::string& input, const std::string& input_path);
+
+// The report files of `eval` and `bench` (an option and its path; empty paths are not checked),
+// before any work: none inside one of the folders `inputs`, where it could replace a mask or a
+// frame (UsageError), no two in one file (UsageError), each one writable (std::runtime_error).
+void checkReportPaths(std::initializer_list<std::pair<const char*, std::string>> reports,
+                      std::initializer_list<std::string> inputs);
 
 // One run per element of `runs`, as runSegmentation does, `threads` runs at a time, each on one
 // thread; a run that fails ends alone. `ended` is called as each run ends, one call at a time.

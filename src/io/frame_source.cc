@@ -4,7 +4,6 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <stdexcept>
 #include <vector>
 
@@ -224,10 +223,16 @@ std::uint32_t bigEndian32(const unsigned char* bytes) {
 bool isDamagedPng(const std::string& path) {
   static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
   constexpr std::uint32_t kMaxSide = 1000000;
-  std::ifstream file(path, std::ios::binary);
-  const std::vector<unsigned char> bytes{std::istreambuf_iterator<char>(file), {}};
-  if (bytes.size() < 8 || !std::equal(kSignature, kSignature + 8, bytes.begin())) return false;
-  size_t at = 8;
+  std::ifstream file(path, std::ios::binary | std::ios::ate);
+  const std::streamoff size = file ? static_cast<std::streamoff>(file.tellg()) : 0;
+  unsigned char head[8] = {};
+  file.seekg(0);
+  file.read(reinterpret_cast<char*>(head), 8);
+  if (!file || !std::equal(kSignature, kSignature + 8, head)) return false;  // not a PNG: read no more
+  std::vector<unsigned char> bytes(static_cast<size_t>(size - 8));  // the chunks
+  file.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  if (!file) return true;
+  size_t at = 0;
   for (bool first = true;; first = false) {
     if (bytes.size() - at < 12) return true;  // a chunk's length, type and CRC at least
     const std::uint32_t length = bigEndian32(&bytes[at]);
