@@ -62,10 +62,17 @@ std::string errorText(int code) {
   return text;
 }
 
+int clampedCount(double count) {
+  return std::isfinite(count) && count > 0 ? static_cast<int>(std::min<double>(count, INT_MAX)) : -1;
+}
+
+}  // namespace
+
 // A pipe's bytes for FFmpeg, read as they come. FFmpeg's own file protocol opens and reads a
 // FIFO with blocking calls, which no deadline and no signal interrupt: a FIFO without a writer,
 // or one whose writer stalls, would hang the run for ever. Opened without waiting for a writer,
-// polled in slices of 50 ms, between which the decoder's deadline and stop flag are asked.
+// polled in slices of 50 ms, between which the decoder's deadline and stop flag are asked. Outside
+// the anonymous namespace: VideoDecoder::FFmpeg, of external linkage, holds one.
 class FifoInput {
  public:
   FifoInput(const std::string& path, VideoDecoder* decoder) : decoder_(decoder) {
@@ -112,12 +119,6 @@ class FifoInput {
   int fd_ = -1;
   AVIOContext* io_ = nullptr;
 };
-
-int clampedCount(double count) {
-  return std::isfinite(count) && count > 0 ? static_cast<int>(std::min<double>(count, INT_MAX)) : -1;
-}
-
-}  // namespace
 
 struct VideoDecoder::FFmpeg {
   AVFormatContext* format = nullptr;
