@@ -11,16 +11,20 @@ into a hidden folder of OUTDIR and renames it to OUTDIR/<name>/ when they are co
     OUTDIR/<name>/summary.json           the input's summary row, written last
     OUTDIR/summary.csv                   every input's row, rewritten at the end of each run
 
-A finished input (one whose folder exists) is skipped on a re-run unless --force. A failing input
-is reported with its error and does not stop the others; the exit status is 1 when any failed.
+A finished input (one whose folder holds its summary.json) is skipped on a re-run unless --force;
+a folder of that name that is not a batch result, or that holds the input, is never replaced: the
+run is refused. A failing input is reported with its error and does not stop the others; the exit
+status is 1 when any failed, 2 for bad arguments, 130 when interrupted.
 """
 import argparse
 import contextlib
 import csv
+import glob
 import io
 import json
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -100,9 +104,46 @@ def named_inputs(sources):
     return named
 
 
-def last_line(text):
-    lines = text.strip().splitlines()
-    return lines[-1] if lines else "no message"
+def is_inside(path, folder):
+    """Whether `path` is `folder` or lies below it, links resolved."""
+    path, folder = os.path.realpath(path), os.path.realpath(folder)
+    return os.path.commonpath([path, folder]) == folder
+
+
+def is_batch_result(folder):
+    return os.path.isfile(os.path.join(folder, "summary.json"))
+
+
+def refuse_replacing_what_is_not_ours(named, output):
+    """OUTDIR/<name>/ is replaced whole when an input is redone: it must be an earlier result of
+    a batch, never a folder of the user's, and neither it nor OUTDIR may hold an input."""
+    for name, source in named.items():
+        folder = os.path.join(output, name)
+        if is_inside(source, folder):
+            raise ValueError(f"'{source}' lies in its own output {folder}: choose another OUTDIR")
+        if is_inside(output, source):
+            raise ValueError(f"OUTDIR {output} lies in the input '{source}'")
+        if os.path.lexists(folder) and not is_batch_result(folder):
+            raise ValueError(f"{folder} exists and is no batch result (no summary.json): "
+                             "move it or choose another OUTDIR")
+
+
+def refuse_bad_segment_options(options):
+    """The tool checks its options before it opens an input (exit 2 for a bad one), so a path
+    that does not exist finds a bad --method or --set here rather than once per input."""
+    with tempfile.TemporaryDirectory() as scratch:
+        missing = os.path.join(scratch, "none")
+        done = subprocess.run([cli_path(), "segment", missing, "-o", missing, "-q", *options],
+                              capture_output=True, text=True)
+    if done.returncode == 2:
+        raise ValueError(failure(done).removeprefix("movseg: error: "))
+
+
+def failure(done):
+    if done.returncode < 0:
+        return f"movseg segment was killed by signal {-done.returncode}"
+    lines = done.stderr.strip().splitlines()
+    return lines[-1] if lines else f"movseg exited with {done.returncode} and no message"
 
 
 def scores(masks, truth, scratch):
@@ -111,7 +152,7 @@ def scores(masks, truth, scratch):
     done = subprocess.run([cli_path(), "eval", masks, truth, "--json", report],
                           capture_output=True, text=True)
     if done.returncode != 0:
-        raise RuntimeError(last_line(done.stderr))
+        raise RuntimeError(failure(done))
     with open(report, encoding="utf-8") as text:
         mean = json.load(text)["mean"]
     os.remove(report)
@@ -122,12 +163,21 @@ def publish(scratch, folder):
     """Puts the finished scratch folder in place of OUTDIR/<name>/ in one rename (a previous
     result, when --force redoes one, goes only once the new one is complete)."""
     old = None
-    if os.path.exists(folder):
+    if os.path.lexists(folder):
+        if not is_batch_result(folder):  # made since the run was checked
+            raise RuntimeError(f"{folder} exists and is no batch result: left as it is")
         old = scratch + ".old"
         os.rename(folder, old)
     os.rename(scratch, folder)
     if old:
         shutil.rmtree(old)
+
+
+def end_with_the_worker():
+    """A worker killed while the tool runs would leave it writing into OUTDIR for nobody."""
+    import ctypes
+
+    ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
 
 
 def segment_input(name, source, output, options, truth):
@@ -141,9 +191,10 @@ def segment_input(name, source, output, options, truth):
         masks, stats = os.path.join(scratch, "masks"), os.path.join(scratch, "stats.jsonl")
         start = time.monotonic()
         done = subprocess.run([cli_path(), "segment", source, "-o", masks, "--stats", stats, "-q",
-                               *options], capture_output=True, text=True)
+                               *options], capture_output=True, text=True,
+                              preexec_fn=end_with_the_worker)
         if done.returncode != 0:
-            raise RuntimeError(last_line(done.stderr))
+            raise RuntimeError(failure(done))
         seconds = time.monotonic() - start
         with open(stats, encoding="utf-8") as lines:
             frames = sum(1 for _ in lines)
@@ -161,11 +212,11 @@ def segment_input(name, source, output, options, truth):
     return row
 
 
-def finished_row(output, name):
-    """The summary row of a finished input; None when it has none."""
+def finished_row(output, name, status):
+    """The summary row of a finished input, with `status`; None when it has none."""
     try:
         with open(os.path.join(output, name, "summary.json"), encoding="utf-8") as summary:
-            return {**json.load(summary), "status": "skipped"}
+            return {**json.load(summary), "status": status}
     except (OSError, ValueError):
         return None
 
@@ -199,23 +250,33 @@ def dask_client(args):
         with Client(args.scheduler) as client:
             yield client
         return
-    with LocalCluster(n_workers=args.workers or os.cpu_count(), threads_per_worker=1,
-                      processes=True, dashboard_address=None) as cluster, Client(cluster) as client:
+    # The worker processes inherit SIGINT ignored (Python leaves it so), so that a Ctrl-C
+    # reaches this process, which closes them, and the tools their tasks run, rather than every
+    # worker's event loop, which would print a traceback each. One while they start is lost.
+    handler = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        cluster = LocalCluster(n_workers=args.workers or os.cpu_count(), threads_per_worker=1,
+                               processes=True, dashboard_address=None)
+    finally:
+        signal.signal(signal.SIGINT, handler)
+    with cluster, Client(cluster) as client:
         yield client
 
 
 def run(args):
-    from dask.distributed import as_completed
-
     output = os.path.abspath(args.output)
-    os.makedirs(output, exist_ok=True)
     named = named_inputs(expand_inputs(args.inputs))
+    refuse_replacing_what_is_not_ours(named, output)
+    if args.ignore and not os.path.isfile(args.ignore):
+        raise ValueError(f"--ignore: no file '{args.ignore}'")
     options = (["--method", args.method] if args.method else []) + \
         [item for value in args.set for item in ("--set", value)] + \
         (["--ignore", os.path.abspath(args.ignore)] if args.ignore else [])
+    refuse_bad_segment_options(options)
+    os.makedirs(output, exist_ok=True)
     rows, todo = {}, []
     for name, source in named.items():
-        finished = None if args.force else finished_row(output, name)
+        finished = None if args.force else finished_row(output, name, "skipped")
         if finished:
             rows[name] = finished
         else:
@@ -223,29 +284,59 @@ def run(args):
     count = len(named)
     for index, name in enumerate(rows, 1):
         print(f"batch: [{index}/{count}] {name} {describe(rows[name])}", flush=True)
-    if todo:
-        with dask_client(args) as client:
-            futures = {client.submit(segment_input, name, named[name], output, options,
-                                     args.gt and os.path.join(os.path.abspath(args.gt), name),
-                                     pure=False): name for name in todo}
-            for future in as_completed(futures):
-                name = futures[future]
-                try:
-                    rows[name] = future.result()
-                except Exception as error:  # the worker itself failed (killed, lost)
-                    rows[name] = {"name": name, "input": named[name], "status": "failed",
-                                  "error": f"{type(error).__name__}: {error}"}
-                print(f"batch: [{len(rows)}/{count}] {name} {describe(rows[name])}", flush=True)
-    ordered = [rows[name] for name in named]
+    interrupted = False
+    try:
+        if todo:
+            segment_on_dask(args, named, todo, output, options, rows)
+    except KeyboardInterrupt:  # SIGINT, or SIGTERM (main): the finished inputs are kept
+        interrupted = True
+    finally:
+        remove_scratch_folders(output, todo)
+    # An input whose task published its folder as the run was interrupted is done all the same.
+    ordered = [rows.get(name) or finished_row(output, name, "done") or
+               {"name": name, "input": named[name], "status": "failed", "error": "interrupted"}
+               for name in named]
     write_csv(os.path.join(output, "summary.csv"), ordered)
     failed = sum(row["status"] == "failed" for row in ordered)
-    print(f"batch: {count - failed} of {count} inputs segmented, {failed} failed; "
+    print(f"batch: {count - failed} of {count} inputs segmented, {failed} failed"
+          f"{' (interrupted)' if interrupted else ''}; "
           f"summary in {os.path.join(output, 'summary.csv')}", flush=True)
-    return 1 if failed else 0
+    return 130 if interrupted else 1 if failed else 0
+
+
+def remove_scratch_folders(output, names):
+    """What a task killed with its worker (or interrupted) left: its hidden scratch folder."""
+    for name in names:
+        for scratch in glob.glob(os.path.join(output, f".{glob.escape(name)}.*.partial*")):
+            shutil.rmtree(scratch, ignore_errors=True)
+
+
+def segment_on_dask(args, named, todo, output, options, rows):
+    """Runs the inputs named in `todo` as Dask tasks, adding each one's row to `rows`."""
+    from dask.distributed import as_completed
+
+    count = len(named)
+    with dask_client(args) as client:
+        futures = {client.submit(segment_input, name, named[name], output, options,
+                                 args.gt and os.path.join(os.path.abspath(args.gt), name),
+                                 pure=False): name for name in todo}
+        for future in as_completed(futures):
+            name = futures[future]
+            try:
+                rows[name] = future.result()
+            except Exception as error:  # the worker itself failed (killed, lost)
+                rows[name] = {"name": name, "input": named[name], "status": "failed",
+                              "error": f"{type(error).__name__}: {error}"}
+            print(f"batch: [{len(rows)}/{count}] {name} {describe(rows[name])}", flush=True)
+
+
+def interrupt(signum, frame):
+    raise KeyboardInterrupt
 
 
 def main(argv):
     args = parse_arguments(argv)
+    signal.signal(signal.SIGTERM, interrupt)
     try:
         return run(args)
     except (OSError, ValueError) as error:

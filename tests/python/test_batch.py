@@ -88,6 +88,64 @@ def test_two_inputs_of_one_name_are_refused(inputs, tmp_path):
     assert done.stderr.startswith("movseg batch: error: ") and "rename one" in done.stderr
 
 
+def test_folders_it_did_not_write_and_inputs_in_their_own_output_are_never_replaced(inputs,
+                                                                                   tmp_path):
+    data = tmp_path / "data"
+    shutil.copytree(inputs / "walk", data / "walk")
+    before = sorted(os.listdir(data / "walk" / "frames"))
+    (tmp_path / "out" / "run").mkdir(parents=True)  # a folder of the user's, no summary.json
+    for sources, output, words in [
+            ([data / "walk" / "frames"], data, "lies in its own output"),  # data/walk/frames
+            ([data / "walk" / "frames"], data / "walk" / "frames" / "out", "lies in the input"),
+            ([inputs / "run" / "frames"], tmp_path / "out", "is no batch result")]:
+        done = batch(*map(str, sources), "-o", str(output), "--force")
+        assert done.returncode == 2 and words in done.stderr, done.stdout + done.stderr
+        assert done.stderr.count("\n") == 1 and "batch: [" not in done.stdout
+    assert sorted(os.listdir(data / "walk" / "frames")) == before
+    assert os.listdir(tmp_path / "out" / "run") == []
+
+
+@pytest.mark.parametrize("option", [["--method", "nonsense"], ["--set", "lk_window=12"],
+                                    ["--set", "no_such_parameter=1"],
+                                    ["--ignore", "/no/such/image.png"]])
+def test_bad_arguments_are_refused_before_any_input_runs(inputs, tmp_path, option):
+    done = batch(str(inputs / "run" / "frames"), "-o", str(tmp_path / "out"), *option)
+    assert done.returncode == 2, done.stdout + done.stderr
+    assert done.stderr.startswith("movseg batch: error: ") and done.stderr.count("\n") == 1
+    assert not (tmp_path / "out").exists()
+
+
+def test_an_interrupted_run_keeps_what_finished_and_says_what_did_not(inputs, tmp_path):
+    listed = tmp_path / "inputs.txt"
+    listed.write_text("".join(f"{inputs / 'walk' / 'frames'}\n" if i == 0 else
+                              f"{tmp_path / f'copy{i}'}\n" for i in range(8)))
+    for i in range(1, 8):
+        shutil.copytree(inputs / "run" / "frames", tmp_path / f"copy{i}")
+    out = tmp_path / "out"
+    run = subprocess.Popen([sys.executable, "-m", "movseg", "batch", str(listed), "-o", str(out),
+                            "--workers", "1"], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                           text=True)
+    first = run.stdout.readline()  # the first input's line: the cluster runs
+    run.terminate()  # SIGTERM, as a cluster's job manager sends
+    rest, errors = run.communicate(timeout=120)
+    assert first.startswith("batch: [1/8]") and run.returncode == 130, first + rest + errors
+    assert "Traceback" not in errors and "(interrupted)" in rest
+    rows = summary(out)
+    assert len(rows) == 8 and any(row["error"] == "interrupted" for row in rows.values())
+    for name, row in rows.items():
+        assert (row["status"] == "done") == (out / name / "summary.json").is_file(), row
+    assert not [entry for entry in os.listdir(out) if entry.startswith(".")]  # no scratch left
+
+
+def test_a_tool_killed_by_a_signal_is_reported_as_such():
+    from movseg.batch import failure
+
+    assert failure(subprocess.CompletedProcess([], -9, "", "")) == \
+        "movseg segment was killed by signal 9"
+    assert failure(subprocess.CompletedProcess([], 1, "", "movseg: error: bad\n")) == \
+        "movseg: error: bad"
+
+
 def free_port():
     with socket.socket() as probe:
         probe.bind(("127.0.0.1", 0))
