@@ -87,27 +87,45 @@ void setIgnore(State* state, const char* text) {
   }
 }
 
-void setProperty(GObject* object, guint id, const GValue* value, GParamSpec* spec) {
-  State& state = stateOf(object);
-  const std::lock_guard<std::mutex> lock(state.lock);
+// Sets a property under the lock; returns why its value was refused ("" if it was not).
+std::string setLocked(State* state, guint id, const GValue* value) {
   switch (id) {
-    case kPropMode: state.mode = static_cast<Mode>(g_value_get_enum(value)); return;
-    case kPropPostMessages: state.post_messages = g_value_get_boolean(value); return;
-    case kPropIgnore: setIgnore(&state, g_value_get_string(value)); return;
+    case kPropMode: state->mode = static_cast<Mode>(g_value_get_enum(value)); return "";
+    case kPropPostMessages: state->post_messages = g_value_get_boolean(value); return "";
+    case kPropIgnore: setIgnore(state, g_value_get_string(value)); return state->ignore_refused;
     default: break;
-  }
-  if (id < kFirstParamProp || id - kFirstParamProp >= movseg::paramFields().size()) {
-    G_OBJECT_WARN_INVALID_PROPERTY_ID(object, id, spec);
-    return;
   }
   const std::size_t field = id - kFirstParamProp;
   try {
-    movseg::gst::setParamProperty(&state.params, field, value);
-    state.refused.erase(field);
-    state.params_changed = true;
+    movseg::gst::setParamProperty(&state->params, field, value);
+    state->refused.erase(field);
+    state->params_changed = true;
+    return "";
   } catch (const std::invalid_argument& e) {
-    state.refused[field] = e.what();  // reported when the stream starts, as an error
+    return state->refused[field] = e.what();  // reported when the stream starts, as an error
   }
+}
+
+// A refused value is an error when the stream starts (start()); set while it runs, the old
+// value stays and a warning on the bus says why. A new mode takes effect when the output caps
+// are negotiated again, which it asks for.
+void setProperty(GObject* object, guint id, const GValue* value, GParamSpec* spec) {
+  if (id != kPropMode && id != kPropPostMessages && id != kPropIgnore &&
+      (id < kFirstParamProp || id - kFirstParamProp >= movseg::paramFields().size())) {
+    G_OBJECT_WARN_INVALID_PROPERTY_ID(object, id, spec);
+    return;
+  }
+  State& state = stateOf(object);
+  std::string refused;
+  {
+    const std::lock_guard<std::mutex> lock(state.lock);
+    refused = setLocked(&state, id, value);
+  }
+  if (!refused.empty() && GST_STATE(object) > GST_STATE_READY) {
+    GST_ELEMENT_WARNING(object, LIBRARY, SETTINGS, ("%s", refused.c_str()),
+                        ("set while the stream runs: the earlier value stays"));
+  }
+  if (id == kPropMode) gst_base_transform_reconfigure_src(GST_BASE_TRANSFORM(object));
 }
 
 void getProperty(GObject* object, guint id, GValue* value, GParamSpec* spec) {
@@ -116,6 +134,7 @@ void getProperty(GObject* object, guint id, GValue* value, GParamSpec* spec) {
   switch (id) {
     case kPropMode: g_value_set_enum(value, static_cast<gint>(state.mode)); return;
     case kPropPostMessages: g_value_set_boolean(value, state.post_messages); return;
+    case kPropIgnore: g_value_set_string(value, state.ignore.c_str()); return;
     default: break;
   }
   if (id < kFirstParamProp || id - kFirstParamProp >= movseg::paramFields().size()) {
@@ -186,11 +205,10 @@ GstCaps* transformCaps(GstBaseTransform* transform, GstPadDirection direction, G
 
 // The segmenter with the current settings, (re)made when they changed: a new stream start. Its
 // ignored region is drawn at the frame's size, again when either changes.
-movseg::Segmenter* segmenterFor(GstVideoFilter* filter, cv::Size frame_size, Mode* mode,
+movseg::Segmenter* segmenterFor(GstVideoFilter* filter, cv::Size frame_size,
                                 bool* post_messages) {
   State& state = stateOf(filter);
   const std::lock_guard<std::mutex> lock(state.lock);
-  *mode = state.mode;
   *post_messages = state.post_messages;
   if (state.params_changed || !state.segmenter) {
     state.params_changed = false;
@@ -220,19 +238,34 @@ cv::Mat matOf(GstVideoFrame* frame) {
                  static_cast<size_t>(GST_VIDEO_FRAME_PLANE_STRIDE(frame, 0)));
 }
 
+// The frame's mask, or its overlay, written into the output buffer's own pixels: what is
+// drawn follows the negotiated output format, not the `mode` property, which may have changed
+// since (its caps follow when negotiated again).
+void writeOutput(const cv::Mat& frame, const movseg::Result& result, guint64 number,
+                 GstVideoFrame* out) {
+  cv::Mat output = matOf(out);
+  const cv::Mat drawn = output.channels() == 1
+                            ? result.mask
+                            : movseg::drawOverlay(frame, result, "frame " + std::to_string(number));
+  CV_Assert(drawn.size() == output.size() && drawn.type() == output.type());
+  drawn.copyTo(output);
+}
+
 GstFlowReturn transformFrame(GstVideoFilter* filter, GstVideoFrame* in, GstVideoFrame* out) {
-  Mode mode = Mode::kMask;
   bool post_messages = true;
   const cv::Mat frame = matOf(in);
-  movseg::Segmenter* segmenter = segmenterFor(filter, frame.size(), &mode, &post_messages);
-  if (segmenter == nullptr) return GST_FLOW_ERROR;
   State& state = stateOf(filter);
-  const movseg::Result result = segmenter->process(frame);
-  cv::Mat output = matOf(out);
-  if (mode == Mode::kMask) {
-    result.mask.copyTo(output);
-  } else {
-    movseg::drawOverlay(frame, result, "frame " + std::to_string(state.frame)).copyTo(output);
+  movseg::Result result;
+  // A frame the segmenter refuses (one beyond its size limits) stops the stream with an error
+  // on the bus, as `movseg segment` stops with one line; an exception must not cross into C.
+  try {
+    movseg::Segmenter* segmenter = segmenterFor(filter, frame.size(), &post_messages);
+    if (segmenter == nullptr) return GST_FLOW_ERROR;
+    result = segmenter->process(frame);
+    writeOutput(frame, result, state.frame, out);
+  } catch (const std::exception& e) {
+    GST_ELEMENT_ERROR(filter, STREAM, FAILED, ("%s", e.what()), (nullptr));
+    return GST_FLOW_ERROR;
   }
   if (post_messages) {
     GstStructure* diagnostics = movseg::gst::diagnosticsStructure(
@@ -250,11 +283,13 @@ void finalize(GObject* object) {
 }
 
 void installProperties(GObjectClass* object_class) {
-  const auto flags = static_cast<GParamFlags>(G_PARAM_READWRITE | GST_PARAM_MUTABLE_READY);
+  const auto flags = static_cast<GParamFlags>(G_PARAM_READWRITE | GST_PARAM_MUTABLE_PLAYING);
   g_object_class_install_property(
       object_class, kPropMode,
-      g_param_spec_enum("mode", "mode", "what the element outputs", modeType(),
-                        static_cast<gint>(Mode::kMask), flags));
+      g_param_spec_enum("mode", "mode",
+                        "what the element outputs (changed while playing: from the next caps "
+                        "negotiation downstream accepts)",
+                        modeType(), static_cast<gint>(Mode::kMask), flags));
   g_object_class_install_property(
       object_class, kPropPostMessages,
       g_param_spec_boolean("post-messages", "post-messages",

@@ -159,8 +159,10 @@ void getParamProperty(const Params& params, std::size_t field, GValue* value) {
 
 GstStructure* diagnosticsStructure(const Diagnostics& diagnostics, guint64 frame,
                                    GstClockTime timestamp) {
-  GstStructure* structure = gst_structure_new("movseg", "frame", G_TYPE_UINT64, frame,
-                                              "timestamp", G_TYPE_UINT64, timestamp, nullptr);
+  GstStructure* structure = gst_structure_new("movseg", "frame", G_TYPE_UINT64, frame, nullptr);
+  if (GST_CLOCK_TIME_IS_VALID(timestamp)) {
+    gst_structure_set(structure, "timestamp", G_TYPE_UINT64, timestamp, nullptr);
+  }
   for (const FieldInfo& field : diagnosticFields()) {
     std::visit(DiagnosticField{structure, field.name.c_str()},
                diagnosticValue(diagnostics, field.name));

@@ -37,8 +37,9 @@ std::vector<cv::Rect2d> parseIgnoredRectangles(const std::string& text);
 // rounded to the nearest pixel; empty when there are none.
 cv::Mat ignoredRegion(const std::vector<cv::Rect2d>& rectangles, cv::Size size);
 
-// The structure of an element message: "movseg", the frame's number and timestamp, then every
-// diagnostic (booleans, ints, doubles; the camera model as an array of its 9 entries, row by row).
+// The structure of an element message: "movseg", the frame's number and timestamp (none for a
+// buffer without one), then every diagnostic (booleans, ints, doubles; the camera model as an
+// array of its 9 entries, row by row).
 GstStructure* diagnosticsStructure(const Diagnostics& diagnostics, guint64 frame,
                                    GstClockTime timestamp);
 

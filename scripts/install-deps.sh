@@ -20,6 +20,7 @@ PACKAGES=(
   python3-distributed                   # python3 -m movseg batch (Dask)
   libgstreamer1.0-dev libgstreamer-plugins-base1.0-dev  # the GStreamer element
   gstreamer1.0-tools gstreamer1.0-plugins-base gstreamer1.0-plugins-good  # ... and its tests
+  python3-gi gir1.2-gstreamer-1.0       # ... one of which drives a pipeline from Python
   chromium                              # renders the HTML report in its test
   dpkg-dev fakeroot file                # make deb (CPack: dpkg-shlibdeps)
   clang libclang-rt-14-dev              # libFuzzer and sanitizer runtimes
