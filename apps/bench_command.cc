@@ -24,6 +24,7 @@
 #include "eval/dataset.h"
 #include "html_report.h"
 #include "io/atomic_write.h"
+#include "io/json_text.h"
 #include "movseg/fields.h"
 #include "params_options.h"
 #include "progress.h"
@@ -356,7 +357,7 @@ void runBench(const BenchOptions& options) {
                               {"streams", throughput->streams},
                               {"streams_at_once_fps", throughput->at_once}};
     }
-    writeTextAtomic(options.json_file, report.dump(2) + "\n");
+    writeTextAtomic(options.json_file, jsonText(report, 2) + "\n");
   }
   if (!options.html_file.empty()) {
     std::vector<ReportRun> runs;

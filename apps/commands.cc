@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <iostream>
 #include <regex>
 
 #include "io/atomic_write.h"
@@ -70,6 +71,13 @@ fs::path temporaryFolder() {
                                      "': " + error.message()));
   }
   return folder;
+}
+
+void throwIfInterrupted(int frames, bool interrupted) {
+  if (!interrupted) return;
+  std::cerr << "movseg: interrupted after " << frames
+            << " frames; the files written so far are complete\n";
+  throw CLI::RuntimeError(kExitInterrupted);
 }
 
 void claimSequenceFolder(const std::string& dir, bool overwrite,

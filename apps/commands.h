@@ -72,6 +72,10 @@ void refuseSharedOutputs(std::initializer_list<std::pair<const char*, std::strin
 // write there (`bench`'s scratch runs, `demo`'s default folder), so that the others never mind.
 std::filesystem::path temporaryFolder();
 
+// Throws CLI::RuntimeError(kExitInterrupted) after saying on stderr how far the run got, when
+// a signal stopped it.
+void throwIfInterrupted(int frames, bool interrupted);
+
 // The help of --overwrite for `synth` and `demo`.
 constexpr char kOverwriteSequenceHelp[] =
     "Replace the frames, masks and camera.jsonl of an earlier sequence in the folder (else a "

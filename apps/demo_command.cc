@@ -7,6 +7,9 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include "commands.h"
 #include "eval/dataset.h"
 #include "params_options.h"
@@ -25,6 +28,19 @@ struct DemoOptions {
   Params params;
 };
 
+// The default folder, replaced on each run, sits at a name anyone may take in a shared /tmp: a
+// link there, or a folder of another user's, would have the demo replace files elsewhere.
+std::string ownDefaultFolder(const fs::path& folder) {
+  struct stat status {};
+  if (lstat(folder.c_str(), &status) == 0 &&
+      (!S_ISDIR(status.st_mode) || status.st_uid != geteuid())) {
+    throw std::runtime_error("'" + folder.string() +
+                             "' is a link, a file or another user's folder, which the demo "
+                             "would replace: remove it or give -o");
+  }
+  return folder.string();
+}
+
 void runDemo(const DemoOptions& options) {
   claimSequenceFolder(options.dir, options.overwrite, {"overlay"});
   writeSynthSequence(options.dir, options.synth);
@@ -40,6 +56,7 @@ void runDemo(const DemoOptions& options) {
   segment.params = options.params;
   segment.overwrite = true;  // the folder is the demo's, claimed above
   const SegmentSummary summary = runSegmentation(segment);
+  throwIfInterrupted(summary.frames, summary.interrupted);
   std::cout << "segment: " << describeSummary(summary) << "\n";
 
   const std::vector<GtSequence> truth = loadGroundTruth(options.dir, GtFormat::kDavis);
@@ -82,7 +99,7 @@ void addDemoCommand(CLI::App& app) {
       }
     });
     if (cmd->count("-o") == 0) {
-      options->dir = (temporaryFolder() / "movseg-demo").string();
+      options->dir = ownDefaultFolder(temporaryFolder() / "movseg-demo");
       options->overwrite = true;
     }
     runDemo(*options);

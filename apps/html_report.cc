@@ -11,6 +11,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "io/atomic_write.h"
+#include "io/json_text.h"
 
 namespace movseg::cli {
 
@@ -203,12 +204,23 @@ std::string sequenceSections(const std::vector<ReportRun>& runs) {
   return html;
 }
 
-// JSON inside <script>: "</" would end the element.
-std::string scriptSafe(std::string json) {
-  for (std::size_t at = json.find("</"); at != std::string::npos; at = json.find("</", at + 2)) {
-    json.replace(at, 2, "<\\/");
+// JSON inside <script>: "</script" would end the element and "<!--" change how it is read, so
+// '<', '>' and '&', which JSON has only inside strings, are written as their \u escapes.
+std::string scriptSafe(const std::string& json) {
+  std::string safe;
+  safe.reserve(json.size());
+  for (const char c : json) {
+    if (c == '<') {
+      safe += "\\u003c";
+    } else if (c == '>') {
+      safe += "\\u003e";
+    } else if (c == '&') {
+      safe += "\\u0026";
+    } else {
+      safe += c;
+    }
   }
-  return json;
+  return safe;
 }
 
 }  // namespace
@@ -245,7 +257,7 @@ void writeHtmlReport(const std::string& path, const std::string& title, const st
       "<h2>Per frame</h2>\n<p class=\"note\">J of every frame; below, the frames of lowest J: the "
       "prediction in red over the frame, the ground truth's outline in green.</p>\n" +
       sequenceSections(runs) + "<script type=\"application/json\" id=\"movseg-data\">" +
-      scriptSafe(chartData(runs).dump()) + "</script>\n<script>\n" +
+      scriptSafe(jsonText(chartData(runs))) + "</script>\n<script>\n" +
       asset(kChartJs, kChartJsSize) + "\n</script>\n<script>\n" +
       asset(kReportJs, kReportJsSize) + "</script>\n</body>\n</html>\n";
   writeTextAtomic(path, page);

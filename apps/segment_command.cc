@@ -22,13 +22,6 @@ std::string inputFailure(const SegmentSummary& summary) {
   return problems.empty() ? "" : problems + "; the files written are complete";
 }
 
-void throwIfInterrupted(int frames, bool interrupted) {
-  if (!interrupted) return;
-  std::cerr << "movseg: interrupted after " << frames
-            << " frames; the files written so far are complete\n";
-  throw CLI::RuntimeError(kExitInterrupted);
-}
-
 // One input: its stream on up to two threads (the next frame analysed while this one is cut).
 void segmentOne(SegmentOptions options, int threads) {
   options.threads = std::min(threads, 2);

@@ -28,6 +28,7 @@
 #include "core/worker.h"
 #include "io/atomic_write.h"
 #include "io/frame_source.h"
+#include "io/json_text.h"
 #include "io/overlay.h"
 #include "io/video_decoder.h"
 #include "live_window.h"
@@ -166,7 +167,7 @@ class Manifest {
     record_["frames_expected"] = source.expected_frames;
     record_["decode_errors"] = source.decode_errors;
     record_["finished"] = finished;
-    writeTextAtomic(path_, record_.dump(2) + "\n");
+    writeTextAtomic(path_, jsonText(record_, 2) + "\n");
   }
 
  private:
@@ -314,7 +315,7 @@ class RunOutputs {
     writeImageAtomic((dir / frameFileName(index)).string(), result.mask);
     // Pictures come with the result when asked for, by --debug or --debug-images alike.
     if (!result.debug.empty()) writeDebugPictures((dir / "debug").string(), index, result);
-    if (stats_) stats_->append(statsLine(index, result.diagnostics, decode_errors).dump());
+    if (stats_) stats_->append(jsonText(statsLine(index, result.diagnostics, decode_errors)));
     overlay_.write(index, picture);
     frames_ = index + 1;
     source_ = source;

@@ -7,6 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/json_text.h"
+
 namespace movseg {
 namespace {
 
@@ -150,7 +152,7 @@ std::string scoresJson(const std::vector<SequenceScore>& scores) {
       {"first_frame_counted", false},
       {"sequences", sequences},
       {"mean", summaryJson(meanOverSequences(summaries(scores), "mean"))}};
-  return report.dump(2) + "\n";
+  return jsonText(report, 2) + "\n";
 }
 
 }  // namespace movseg

@@ -47,25 +47,53 @@ void renameOver(const std::string& temporary, const std::string& target, const s
 // Where a write to a path goes.
 struct Target {
   std::string path;       // the path, or the file a symlink there points to (through every link)
-  bool in_place = false;  // an existing device or FIFO: written directly, never renamed over
+  bool in_place = false;  // an existing device, FIFO or open descriptor: written directly, never
+                          // renamed over
+  int descriptor = -1;    // /dev/stdout and the like: this process's descriptor, written through
 };
+
+// The descriptor a path names through /proc (/dev/stdout -> /proc/self/fd/1), or -1. Written
+// through it, the output shares the descriptor's offset with what the process writes there.
+int ownDescriptorOf(const fs::path& path) {
+  const std::string text = path.lexically_normal().string();
+  const std::string prefixes[] = {"/proc/self/fd/", "/dev/fd/",
+                                  "/proc/" + std::to_string(::getpid()) + "/fd/"};
+  for (const std::string& prefix : prefixes) {
+    if (text.rfind(prefix, 0) != 0) continue;
+    const std::string number = text.substr(prefix.size());
+    if (number.empty() || number.size() > 9 ||
+        !std::all_of(number.begin(), number.end(), [](unsigned char c) { return std::isdigit(c); })) {
+      return -1;
+    }
+    return std::stoi(number);
+  }
+  return -1;
+}
 
 // A folder is refused here: renaming a file over it would fail only once the work is done.
 Target resolveTarget(const std::string& path) {
   std::error_code error;
   fs::path target = path;
   for (int links = 0; links < 40 && fs::is_symlink(target, error); ++links) {
+    const int descriptor = ownDescriptorOf(target);
+    if (descriptor >= 0) return {path, true, descriptor};
     const fs::path link = fs::read_symlink(target, error);
     target = link.is_absolute() ? link : target.parent_path() / link;
   }
-  const fs::file_status status = fs::status(target, error);
+  const fs::file_status status = fs::status(path, error);  // as open() sees it
   if (fs::is_directory(status)) throw writeError(path, EISDIR);
   return {target.string(), fs::exists(status) && !fs::is_regular_file(status)};
 }
 
-// Opens an existing device or FIFO for writing. A FIFO without a reader is refused at once
-// (ENXIO) rather than waited for: a blocked open() would not even end on SIGINT.
+// Opens an existing device or FIFO for writing, or a copy of the process's own descriptor. A
+// FIFO without a reader is refused at once (ENXIO) rather than waited for: a blocked open()
+// would not even end on SIGINT.
 int openInPlace(const Target& target, const std::string& path) {
+  if (target.descriptor >= 0) {
+    const int fd = ::fcntl(target.descriptor, F_DUPFD_CLOEXEC, 0);
+    if (fd < 0) throw writeError(path, errno);
+    return fd;
+  }
   const int fd = ::open(target.path.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0 && errno == ENXIO) {
     throw std::runtime_error("cannot write '" + path + "': no process reads the FIFO");
@@ -196,7 +224,7 @@ void LineFile::append(const std::string& line) {
   const int error = writeAll(fd_, text.data(), text.size());
   if (error != 0) {
     // Cut the partial line off again, so that the file still ends with a whole line.
-    if (::ftruncate(fd_, size_) == 0) ::lseek(fd_, size_, SEEK_SET);
+    if (!in_place_ && ::ftruncate(fd_, size_) == 0) ::lseek(fd_, size_, SEEK_SET);
     throw writeError(path_, error);
   }
   size_ += static_cast<long long>(text.size());

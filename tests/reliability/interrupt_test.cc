@@ -167,5 +167,20 @@ TEST_F(InterruptBench, StopsWithoutATableAndRemovesItsScratchFolder) {
   EXPECT_FALSE(fs::exists(dir / "bench.json"));
 }
 
+// demo stops as segment does, without scoring the frames it did not segment.
+class InterruptDemo : public Interrupt {};
+
+TEST_F(InterruptDemo, StopsWithoutAScore) {
+  test::TempDir dir;
+  const pid_t pid = test::startCli(
+      {"demo", "-o", dir / "demo", "--frames", std::to_string(kFrames)}, dir / "log.txt");
+  ASSERT_GT(pid, 0);
+  ASSERT_NO_FATAL_FAILURE(stopOnceWritten(pid, dir / "demo/segmented/00005.png", SIGTERM,
+                                          std::chrono::seconds(120)));
+  const std::string log = textOf(dir / "log.txt");
+  EXPECT_NE(log.find("movseg: interrupted after "), std::string::npos) << log;
+  EXPECT_EQ(log.find("demo: J"), std::string::npos) << log;
+}
+
 }  // namespace
 }  // namespace movseg

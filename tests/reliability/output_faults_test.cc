@@ -234,6 +234,28 @@ TEST_F(OutputFaults, AMissingTemporaryFolderFailsOnlyTheCommandsThatWriteThere) 
   test::expectOneLineError(bench, "no folder for temporary files", test::kExitRunFailed);
 }
 
+// demo's default folder, which each run replaces, is a name anyone may take in a shared /tmp:
+// a link there is refused, and what it points to is left as it was.
+TEST_F(OutputFaults, ADemoFolderThatIsALinkIsRefused) {
+  fs::create_directories(dir_ / "tmp");
+  fs::create_directories(dir_ / "victim/frames");
+  { std::ofstream(dir_ / "victim/camera.jsonl") << "keep\n"; }
+  fs::create_directory_symlink(dir_ / "victim", dir_ / "tmp/movseg-demo");
+  const char* was = std::getenv("TMPDIR");
+  const std::string previous = was != nullptr ? was : "";
+  ::setenv("TMPDIR", (dir_ / "tmp").c_str(), 1);
+  const test::CommandResult demo = test::runCli("demo --frames 2");
+  if (was != nullptr) {
+    ::setenv("TMPDIR", previous.c_str(), 1);
+  } else {
+    ::unsetenv("TMPDIR");
+  }
+  test::expectOneLineError(demo, "is a link, a file or another user's folder",
+                           test::kExitRunFailed);
+  EXPECT_EQ(test::filesIn(dir_ / "victim"), (std::vector<std::string>{"camera.jsonl", "frames"}));
+  EXPECT_TRUE(fs::is_empty(dir_ / "victim/frames"));
+}
+
 // Empty names are refused by every command, not taken as "none" or as the filesystem's root.
 TEST_F(OutputFaults, EmptyOutputNamesAreRefused) {
   const std::string masks = *clip_ / "clip/masks";
@@ -363,6 +385,71 @@ TEST_F(OutputFaults, AFifoOrASymlinkAsOutputIsWrittenThroughNotReplaced) {
   EXPECT_TRUE(fs::is_symlink(dir_ / "link.json"));
   EXPECT_NO_THROW(nlohmann::json::parse(std::ifstream(dir_ / "reports/scores.json")));
   EXPECT_FALSE(anyPartFile(dir_.path()));
+}
+
+// /dev/stdout names the process's own descriptor: written through it, whether it is a pipe or a
+// file the shell opened, beside what the command itself prints there (it failed on a pipe; a
+// file was replaced by a new one, and the command's own lines went to the old).
+TEST_F(OutputFaults, StandardOutputAsAnOutputIsWrittenThroughItsDescriptor) {
+  const auto countStats = [](const std::string& text) {
+    std::istringstream lines(text);
+    std::string line;
+    int stats = 0, summaries = 0;
+    while (std::getline(lines, line)) {
+      if (line.rfind("segment: 12 frames", 0) == 0) {
+        ++summaries;
+      } else {
+        EXPECT_EQ(nlohmann::json::parse(line).at("frame"), stats++);
+      }
+    }
+    return std::make_pair(stats, summaries);
+  };
+  const test::CommandResult piped =
+      test::runCli("segment " + frames() + " -o " + dir_ / "out" + " --stats /dev/stdout");
+  ASSERT_EQ(piped.exit_code, 0) << piped.output;
+  const auto [piped_stats, piped_summaries] = countStats(piped.output);
+  EXPECT_EQ(piped_stats, 12) << piped.output;
+  EXPECT_GE(piped_summaries, 1) << piped.output;
+
+  const test::CommandResult redirected = test::runCli(
+      "segment " + frames() + " -o " + dir_ / "out2" + " --stats /dev/stdout > " + dir_ / "log");
+  ASSERT_EQ(redirected.exit_code, 0) << redirected.output;
+  std::ostringstream log;
+  log << std::ifstream(dir_ / "log").rdbuf();
+  const auto [logged_stats, logged_summaries] = countStats(log.str());
+  EXPECT_EQ(logged_stats, 12) << log.str();
+  EXPECT_GE(logged_summaries, 1) << log.str();
+
+  const test::CommandResult report = test::runCli(
+      "eval " + (*clip_ / "clip/masks") + " " + (*clip_ / "clip/masks") + " --json /dev/stdout");
+  ASSERT_EQ(report.exit_code, 0) << report.output;
+  EXPECT_NE(report.output.find("\"mean\": {"), std::string::npos) << report.output;
+  EXPECT_FALSE(anyPartFile(dir_.path()));
+}
+
+// A Linux file name need not be UTF-8 (Latin-1 "caf\xe9"); JSON text must be: the reports and
+// the manifest name such a sequence with U+FFFD for the byte, where they failed with the JSON
+// library's message.
+TEST_F(OutputFaults, NamesThatAreNotUtf8AreReportedWithAReplacementCharacter) {
+  const std::string data = dir_ / "data", latin1 = "caf\xe9";
+  fs::create_directories(data);
+  fs::create_directory_symlink(*clip_ / "clip", data + "/" + latin1);
+  const test::CommandResult segment = test::runCli(
+      "segment '" + data + "/" + latin1 + "/frames' -o " + dir_ / "out" + " -q");
+  ASSERT_EQ(segment.exit_code, 0) << segment.output;
+  const test::CommandResult bench =
+      test::runCli("bench " + data + " --methods diff --json " + dir_ / "bench.json");
+  ASSERT_EQ(bench.exit_code, 0) << bench.output;
+  const test::CommandResult eval = test::runCli("eval '" + data + "/" + latin1 + "/masks' '" +
+                                                data + "/" + latin1 + "' --json " +
+                                                dir_ / "eval.json");
+  ASSERT_EQ(eval.exit_code, 0) << eval.output;
+  const auto read = [](const std::string& path) {
+    return nlohmann::json::parse(std::ifstream(path));
+  };
+  EXPECT_EQ(read(dir_ / "bench.json").at("rows").at(0).at("sequence"), "caf\xef\xbf\xbd");
+  EXPECT_NE(read(dir_ / "out/movseg-run.json").dump().find("caf\xef\xbf\xbd"), std::string::npos);
+  EXPECT_NO_THROW(read(dir_ / "eval.json"));
 }
 
 // synth and demo write into a folder that holds files only when told to, and then leave no
