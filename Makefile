@@ -69,7 +69,7 @@ test-sanitize: deps
 # not instrumented) and takes them for races. Only those tests run: the rest of the suite starts
 # no thread of movseg's, and the sanitizer build above covers it. tests/tsan.supp: a lock-order
 # inversion inside GDAL, an OpenCV codec dependency (docs/reliability.md).
-TSAN_TESTS = Determinism.TwoSegmenters*:VideoDecoder.AStopFlag*:EveryMethod/Stream.*_2threads:SegmentRuns.*
+TSAN_TESTS = Determinism.TwoSegmenters*:VideoDecoder.AStopFlag*:EveryMethod/Stream.*_2threads:SegmentRuns.*:BackgroundSubtractor.ThreadsSharing*
 test-tsan: deps
 	@echo "test-tsan: ThreadSanitizer build in $(TSAN_DIR)"
 	@cmake -S . -B $(TSAN_DIR) $(subst address$(comma)undefined,thread,$(SANITIZE_FLAGS)) >/dev/null

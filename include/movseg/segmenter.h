@@ -45,6 +45,8 @@ class Segmenter {
   // Throws std::invalid_argument when params.check() fails.
   explicit Segmenter(const Params& params = Params());
   ~Segmenter();
+  // A Segmenter moved from holds no stream: it may only be assigned to or destroyed (as a
+  // std::unique_ptr moved from may only be reset), never called.
   Segmenter(Segmenter&&) noexcept;
   Segmenter& operator=(Segmenter&&) noexcept;
   Segmenter(const Segmenter&) = delete;

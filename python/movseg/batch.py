@@ -29,10 +29,12 @@ import subprocess
 import sys
 import tempfile
 import time
+import uuid
 
 from .__main__ import cli_path
 
 COLUMNS = ["name", "input", "status", "frames", "seconds", "fps", "J", "F", "error"]
+SUMMARY = "summary.csv"  # OUTDIR's own file
 # Folder names that say what a folder holds rather than which video it is: clip/frames is "clip".
 LAYOUT_FOLDERS = {"frames", "input", "images"}
 
@@ -60,8 +62,8 @@ def parse_arguments(argv):
                              "adds J and F to the summary")
     parser.add_argument("--force", action="store_true", help="redo finished inputs too")
     args = parser.parse_args(argv)
-    if args.workers is not None and (args.workers < 1 or args.scheduler):
-        parser.error("--workers takes a count of at least 1, for the local cluster only")
+    if args.workers is not None and (not 1 <= args.workers <= 256 or args.scheduler):
+        parser.error("--workers takes a count from 1 to 256, for the local cluster only")
     return args
 
 
@@ -94,9 +96,14 @@ def input_name(source):
 
 
 def named_inputs(sources):
+    if not sources:
+        raise ValueError("no inputs: the list files name none")
     named = {}
     for source in sources:
         name = input_name(source)
+        if name == SUMMARY:
+            raise ValueError(f"'{source}' would write OUTDIR/{SUMMARY}/, the summary's name: "
+                             "rename it")
         if name in named:
             raise ValueError(f"'{named[name]}' and '{source}' would both write OUTDIR/{name}/: "
                              "rename one")
@@ -184,7 +191,9 @@ def segment_input(name, source, output, options, truth):
     """One task: segments `source` into output/name/ and returns its summary row. Runs on a
     worker; a failure is returned as a row, so that it never stops the other inputs."""
     row = {"name": name, "input": source, "status": "failed"}
-    scratch = tempfile.mkdtemp(prefix=f".{name}.", suffix=".partial", dir=output)
+    # Not mkdtemp's: its folders are private (0700), where the results take the umask's mode.
+    scratch = os.path.join(output, f".{name}.{uuid.uuid4().hex}.partial")
+    os.mkdir(scratch)
     try:
         if truth and not os.path.isdir(truth):
             raise RuntimeError(f"no ground truth '{truth}'")
@@ -296,11 +305,11 @@ def run(args):
     ordered = [rows.get(name) or finished_row(output, name, "done") or
                {"name": name, "input": named[name], "status": "failed", "error": "interrupted"}
                for name in named]
-    write_csv(os.path.join(output, "summary.csv"), ordered)
+    write_csv(os.path.join(output, SUMMARY), ordered)
     failed = sum(row["status"] == "failed" for row in ordered)
     print(f"batch: {count - failed} of {count} inputs segmented, {failed} failed"
           f"{' (interrupted)' if interrupted else ''}; "
-          f"summary in {os.path.join(output, 'summary.csv')}", flush=True)
+          f"summary in {os.path.join(output, SUMMARY)}", flush=True)
     return 130 if interrupted else 1 if failed else 0
 
 

@@ -1,10 +1,14 @@
 #include "movseg/background_subtractor.h"
 
+#include <mutex>
+
 #include "movseg/segmenter.h"
 
 namespace movseg {
 namespace {
 
+// Its calls are serialised: cv2 releases the GIL in apply(), so Python threads sharing one
+// subtractor would otherwise corrupt the segmenter's state (MOG2's crash, not repeated here).
 class MovingCameraSubtractor : public cv::BackgroundSubtractor {
  public:
   MovingCameraSubtractor(const Params& params, const cv::Mat& ignored_region)
@@ -13,6 +17,7 @@ class MovingCameraSubtractor : public cv::BackgroundSubtractor {
   }
 
   void apply(cv::InputArray image, cv::OutputArray fgmask, double /*learningRate*/) override {
+    const std::lock_guard<std::mutex> lock(mutex_);
     segmenter_.process(image.getMat()).mask.copyTo(fgmask);
   }
 
@@ -25,15 +30,21 @@ class MovingCameraSubtractor : public cv::BackgroundSubtractor {
   }
 
   void getBackgroundImage(cv::OutputArray backgroundImage) const override {
+    const std::lock_guard<std::mutex> lock(mutex_);
     segmenter_.compensatedPreviousFrame().copyTo(backgroundImage);
   }
 
   // cv::Algorithm::clear(): forget the stream, so the next frame is a first frame.
-  void clear() override { segmenter_.reset(); }
+  void clear() override {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    segmenter_.reset();
+  }
 
-  cv::String getDefaultName() const override { return "movseg.MovingCameraSubtractor"; }
+  // The key cv::Algorithm::save() writes the state under: letters, digits, '_' and '-' only.
+  cv::String getDefaultName() const override { return "movseg_MovingCameraSubtractor"; }
 
  private:
+  mutable std::mutex mutex_;
   Segmenter segmenter_;
 };
 

@@ -57,6 +57,10 @@ std::unique_ptr<FrameLoop::Job> FrameLoop::newJob() const {
 
 cv::Mat FrameLoop::ownedBgr(const cv::Mat& frame) {
   if (frame.empty()) throw std::invalid_argument("empty frame");
+  if (frame.dims != 2) {
+    throw std::invalid_argument("a frame has 2 dimensions (rows, columns; then channels), not " +
+                                std::to_string(frame.dims));
+  }
   checkWorkingScales(frame.size(), params_);
   return openCvChecked([&] {
     cv::Mat bgr = frames_.take(frame.size(), CV_8UC3);
@@ -118,9 +122,9 @@ cv::Mat FrameLoop::compensatedPreviousFrame() const {
 }
 
 void FrameLoop::setIgnoredRegion(const cv::Mat& region) {
-  if (!region.empty() && region.type() != CV_8UC1) {
+  if (!region.empty() && (region.type() != CV_8UC1 || region.dims != 2)) {
     throw std::invalid_argument(
-        "the ignored region must be 8-bit with one channel, non-zero where ignored");
+        "the ignored region must be an 8-bit image with one channel, non-zero where ignored");
   }
   cv::Mat binary;
   if (!region.empty()) cv::compare(region, 0, binary, cv::CMP_NE);

@@ -3,11 +3,10 @@
 // frame on one; `movseg segment --threads 2` reads the next frame on another.
 #pragma once
 
-#include <condition_variable>
-#include <exception>
+#include <sys/types.h>
+
 #include <functional>
-#include <mutex>
-#include <thread>
+#include <memory>
 
 namespace movseg {
 
@@ -25,14 +24,16 @@ class Worker {
   void wait();
 
  private:
-  void run();
+  struct State;
+  static void run(State* state);
 
-  std::mutex mutex_;
-  std::condition_variable wake_, done_;
-  std::function<void()> task_;
-  std::exception_ptr error_;
-  bool quit_ = false;
-  std::thread thread_;  // last: it starts once the members above are made
+  // In a process forked from the owner's the thread does not exist: start() and wait() throw
+  // std::runtime_error, and the destructor leaves the state as it is (its mutex and condition
+  // variables may be held by the thread that is gone; destroying them would wait for it).
+  void refuseInAnotherProcess() const;
+
+  pid_t process_;
+  std::unique_ptr<State> state_;
 };
 
 }  // namespace movseg

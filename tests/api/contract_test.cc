@@ -67,10 +67,17 @@ TEST_P(Contract, AcceptsGreyBgra16BitAndFloatFrames) {
   EXPECT_TRUE(test::identical(masksOf(grey), expected_grey));
 }
 
+// A cv::Mat of 3 dimensions is no frame and no region (a region of them made every later
+// frame fail).
 TEST_P(Contract, RejectsEmptyFramesAndUnsupportedChannelCounts) {
   Segmenter segmenter(params());
   EXPECT_THROW(segmenter.process(cv::Mat()), std::invalid_argument);
   EXPECT_THROW(segmenter.process(cv::Mat(8, 8, CV_8UC2, cv::Scalar(1, 2))), std::invalid_argument);
+  const int sides[] = {8, 8, 3};
+  const cv::Mat cube(3, sides, CV_8UC1, cv::Scalar(1));
+  EXPECT_THROW(segmenter.process(cube), std::invalid_argument);
+  EXPECT_THROW(segmenter.setIgnoredRegion(cube), std::invalid_argument);
+  test::expectValidResult(segmenter.process(test::synthFrames(1, 1)[0]), {320, 240});
   Params bad = params();
   bad.gmm_clusters = 0;
   EXPECT_THROW(Segmenter{bad}, std::invalid_argument);

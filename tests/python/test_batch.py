@@ -61,6 +61,9 @@ def test_corrupt_input_fails_alone_and_reruns_skip_finished_ones(inputs, tmp_pat
         assert float(rows[name]["J"]) > 0.5 and float(rows[name]["F"]) > 0
         assert json.loads((out / name / "summary.json").read_text())["frames"] == 6
     assert sorted(os.listdir(out)) == ["run", "summary.csv", "walk"]  # no partial folder left
+    umask = os.umask(0)
+    os.umask(umask)
+    assert (out / "walk").stat().st_mode & 0o777 == 0o777 & ~umask  # not a temporary's 0700
 
     again = batch(str(inputs / "inputs.txt"), str(inputs / "run/frames"), "-o", str(out),
                   "--workers", "2")
@@ -103,6 +106,15 @@ def test_folders_it_did_not_write_and_inputs_in_their_own_output_are_never_repla
         assert done.stderr.count("\n") == 1 and "batch: [" not in done.stdout
     assert sorted(os.listdir(data / "walk" / "frames")) == before
     assert os.listdir(tmp_path / "out" / "run") == []
+
+
+def test_an_input_named_as_the_summary_and_an_empty_list_are_refused(inputs, tmp_path):
+    (tmp_path / "summary.csv.mp4").write_bytes((inputs / "bad.mp4").read_bytes())
+    (tmp_path / "none.txt").write_text("# nothing yet\n")
+    for source, words in [("summary.csv.mp4", "the summary's name"), ("none.txt", "no inputs")]:
+        done = batch(str(tmp_path / source), "-o", str(tmp_path / "out"))
+        assert done.returncode == 2 and words in done.stderr, done.stdout + done.stderr
+    assert not (tmp_path / "out").exists()
 
 
 @pytest.mark.parametrize("option", [["--method", "nonsense"], ["--set", "lk_window=12"],

@@ -80,3 +80,32 @@ def test_reset_params_and_bad_arguments(frames):
     for threads in (0, 3, -1, 2**32 + 2, 2**40):  # beyond int: the same error, not a TypeError
         with pytest.raises(ValueError, match="threads"):
             movseg.StreamSegmenter(threads=threads)
+
+
+FORKED = {}  # what a forked child finds in its copy of the parent's memory
+
+
+def push_in_forked_child():
+    """What a push of the stream made in the parent does in a forked child, and whether a stream
+    made in the child works there."""
+    frames = FORKED["frames"]
+    try:
+        FORKED["stream"].push(frames[1])
+        said = "no error"
+    except RuntimeError as error:
+        said = str(error)
+    fresh = movseg.StreamSegmenter(threads=2)
+    fresh.push(frames[1])
+    return said, fresh.push(frames[2]) is not None
+
+
+def test_a_two_thread_stream_refuses_a_forked_child_instead_of_hanging(frames):
+    import multiprocessing
+
+    FORKED.update(stream=movseg.StreamSegmenter(threads=2), frames=frames)
+    FORKED["stream"].push(frames[0])  # its thread analyses this frame as the child is forked
+    with multiprocessing.get_context("fork").Pool(1) as pool:
+        said, fresh_works = pool.apply_async(push_in_forked_child).get(timeout=60)
+    assert said.startswith("this object's thread was started in the process it was forked from")
+    assert fresh_works
+    assert FORKED.pop("stream").push(frames[1]) is not None  # the parent's goes on
