@@ -13,6 +13,10 @@ int main(int argc, char** argv) {
     return 2;
   }
   cv::VideoCapture video(argv[1]);
+  if (!video.isOpened()) {
+    std::fprintf(stderr, "cannot open %s\n", argv[1]);
+    return 1;
+  }
   movseg::Params params;  // every field is documented in movseg/params.def
   params.static_camera = false;  // true for a fixed camera: no alignment
   movseg::Segmenter segmenter(params);
@@ -22,7 +26,10 @@ int main(int argc, char** argv) {
     const movseg::Result result = segmenter.process(frame);  // mask: CV_8U, 0 / 255
     char name[32];
     std::snprintf(name, sizeof name, "/%05d.png", index);
-    cv::imwrite(argv[2] + std::string(name), result.mask);
+    if (!cv::imwrite(argv[2] + std::string(name), result.mask)) {
+      std::fprintf(stderr, "cannot write %s%s\n", argv[2], name);
+      return 1;
+    }
     std::printf("frame %d: %d moving pixels\n", index, cv::countNonZero(result.mask));
   }
   return 0;

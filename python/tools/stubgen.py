@@ -15,7 +15,7 @@ INDENT = "    "
 def annotation(field):
     if field["choices"]:
         return "Literal[" + ", ".join(f'"{name}"' for name in field["choices"]) + "]"
-    return "Matrix" if field["type"] == "matrix" else field["type"]
+    return "_Matrix" if field["type"] == "matrix" else field["type"]
 
 
 def attributes(fields, read_only):

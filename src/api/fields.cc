@@ -244,8 +244,10 @@ std::string helpText(const FieldInfo& field) {
       return field.doc + " {" + detail + "}";
     case FieldType::kInt:
     case FieldType::kReal:
-      detail = number(field.min) + ".." + number(field.max);
-      if (field.step == 2) detail += " odd";
+      if (field.min < field.max) {  // a diagnostic's table gives no range (0..0)
+        detail = number(field.min) + ".." + number(field.max);
+        if (field.step == 2) detail += " odd";
+      }
       break;
     default:
       break;

@@ -1,5 +1,6 @@
 // The field tables (movseg/params.def, movseg/diagnostics.def) and what is generated from them:
 // Params::check(), setParam's parsing, the names and docs every binding shows.
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -204,9 +205,15 @@ TEST(Fields, DiagnosticsAreReadByName) {
   EXPECT_THROW(diagnosticValue(d, "nonsense"), std::invalid_argument);
 }
 
+// A diagnostic has no range (its table gives 0..0): only its unit is shown.
 TEST(Fields, HelpTextShowsTheRange) {
   EXPECT_EQ(helpText(paramField("lk_window")), "Lucas-Kanade window side (odd) [3..101 odd px]");
   EXPECT_NE(helpText(paramField("motion_model")).find("{affine, homography}"), std::string::npos);
+  const auto& diagnostics = diagnosticFields();
+  const auto total = std::find_if(diagnostics.begin(), diagnostics.end(),
+                                  [](const FieldInfo& f) { return f.name == "total_ms"; });
+  ASSERT_NE(total, diagnostics.end());
+  EXPECT_EQ(helpText(*total), total->doc + " [ms]");
 }
 
 }  // namespace

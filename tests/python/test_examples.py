@@ -23,3 +23,13 @@ def test_drop_in_finds_the_same_moving_pixels(source_dir, clip, cli_masks):
     output = run_example(source_dir, "drop_in.py", str(clip / "frames/%05d.png"))
     expected = [f"frame {i}: {(mask > 0).sum()} moving pixels" for i, mask in enumerate(cli_masks)]
     assert output.splitlines() == expected
+
+
+def test_segment_video_says_what_it_cannot_open_or_write(source_dir, clip, tmp_path):
+    script = str(source_dir / "examples/python/segment_video.py")
+    for args, words in [([str(tmp_path / "none.mp4"), str(tmp_path)], "cannot open"),
+                        ([str(clip / "frames/%05d.png"), str(tmp_path / "missing")],
+                         "cannot write")]:
+        done = subprocess.run([sys.executable, script, *args], capture_output=True, text=True)
+        # (cv2 may warn first: its lines are its own)
+        assert done.returncode == 1 and done.stderr.splitlines()[-1].startswith(words), done.stderr

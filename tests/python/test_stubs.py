@@ -22,7 +22,7 @@ USER_CODE = textwrap.dedent("""\
     mask: np.ndarray = result.mask
     total: float = result.diagnostics.total_ms
     model = result.diagnostics.model
-    subtractor = movseg.createMovingCameraSubtractor(params)
+    subtractor = movseg.createMovingCameraSubtractor(params, ignored_region=np.ones((8, 8)))
     subtractor.clear()
     stream = movseg.StreamSegmenter(params, threads=2)
     previous: Optional[movseg.Result] = stream.push(np.zeros((8, 8, 3), np.uint8))
@@ -50,3 +50,9 @@ def test_stubs_list_every_field():
     for field in movseg._movseg._param_fields() + movseg._movseg._diagnostic_fields():
         assert f' {field["name"]}' in stubs, field["name"]
     assert 'method: Literal["paper", "diff", "mog2", "mog2-comp", "dense"]' in stubs
+    # Every public name of the stubs is the module's (a stub-only alias misled users).
+    names = {line.split()[1].split("(")[0].rstrip(":") if line.startswith(("class ", "def "))
+             else line.split()[0].rstrip(":") for line in stubs.splitlines()
+             if line[:1].isalpha() and not line.startswith(("from ", "import "))}
+    assert names and all(hasattr(movseg, name) for name in names if not name.startswith("_")), \
+        sorted(name for name in names if not hasattr(movseg, name))
