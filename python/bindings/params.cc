@@ -59,6 +59,9 @@ void bindParams(py::module_& module) {
                             "(lambda is lambda_ in Python).");
   params.def(py::init(&fromKeywords))
       .def("check", &Params::check, "Raises ValueError naming the first parameter out of range.")
+      .def("__eq__", [](const Params& a, const Params& b) { return a == b; }, py::is_operator())
+      .def("__copy__", [](const Params& p) { return p; })
+      .def("__deepcopy__", [](const Params& p, const py::dict&) { return p; }, py::arg("memo"))
       .def("__repr__", [](const py::object& p) { return reprOf(p, "Params", paramFields()); });
 #define MOVSEG_PARAM(type, name, default_value, min, max, step, unit, doc) \
   bindField<type>(params, #name, &Params::name);

@@ -128,7 +128,7 @@ void bindSegmenter(py::module_& module) {
              }));
            },
            "The previous frame warped onto the last one (HxWx3 uint8 BGR); None before the "
-           "second frame.")
+           "second frame, and always with method mog2, which fits no camera model.")
       .def_property_readonly(
           "params",
           [](PySegmenter& s) {

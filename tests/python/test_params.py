@@ -1,4 +1,5 @@
 """movseg.Params: every field of include/movseg/params.def, with its name and its doc."""
+import copy
 import re
 
 import pytest
@@ -56,7 +57,10 @@ def test_keywords_set_fields_and_values_round_trip():
         assert getattr(params, name) == value, name
         setattr(defaults, name, value)
         assert getattr(defaults, name) == value, name
-    assert repr(params) == repr(defaults)
+    assert repr(params) == repr(defaults) and params == defaults
+    assert params != movseg.Params() and params is not None
+    copied = copy.deepcopy(params)
+    assert copied == params and copied is not params and copy.copy(params) == params
     params.check()
     assert movseg.Segmenter(movseg.Params(lambda_=123.0)).params.lambda_ == 123.0
 
