@@ -138,6 +138,9 @@ def refuse_replacing_what_is_not_ours(named, output):
 def refuse_bad_segment_options(options):
     """The tool checks its options before it opens an input (exit 2 for a bad one), so a path
     that does not exist finds a bad --method or --set here rather than once per input."""
+    if cli_path() is None:
+        raise ValueError("the movseg command-line tool was found neither with this package nor "
+                         "on PATH")
     with tempfile.TemporaryDirectory() as scratch:
         missing = os.path.join(scratch, "none")
         done = subprocess.run([cli_path(), "segment", missing, "-o", missing, "-q", *options],
@@ -147,8 +150,9 @@ def refuse_bad_segment_options(options):
 
 
 def failure(done):
+    """What a run of the tool that failed says: its last line, or the signal that ended it."""
     if done.returncode < 0:
-        return f"movseg segment was killed by signal {-done.returncode}"
+        return f"movseg {done.args[1]} was killed by signal {-done.returncode}"
     lines = done.stderr.strip().splitlines()
     return lines[-1] if lines else f"movseg exited with {done.returncode} and no message"
 

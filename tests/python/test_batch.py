@@ -152,10 +152,10 @@ def test_an_interrupted_run_keeps_what_finished_and_says_what_did_not(inputs, tm
 def test_a_tool_killed_by_a_signal_is_reported_as_such():
     from movseg.batch import failure
 
-    assert failure(subprocess.CompletedProcess([], -9, "", "")) == \
-        "movseg segment was killed by signal 9"
-    assert failure(subprocess.CompletedProcess([], 1, "", "movseg: error: bad\n")) == \
-        "movseg: error: bad"
+    assert failure(subprocess.CompletedProcess(["movseg", "eval"], -9, "", "")) == \
+        "movseg eval was killed by signal 9"
+    assert failure(subprocess.CompletedProcess(["movseg", "segment"], 1, "",
+                                               "movseg: error: bad\n")) == "movseg: error: bad"
 
 
 def free_port():
