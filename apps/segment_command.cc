@@ -118,7 +118,9 @@ void addSegmentCommand(CLI::App& app) {
     if (cmd->count("--overlay") > 0 && options->overlay.empty()) {
       options->overlay = several ? "overlay" : options->output_dir + "/overlay";
     }
-    options->timeout = std::chrono::milliseconds(std::llround(*timeout * 1000));
+    // Whole milliseconds, at least one for any time given: 0 ms means "no limit".
+    options->timeout = std::chrono::milliseconds(
+        *timeout > 0 ? std::max(1LL, std::llround(*timeout * 1000)) : 0LL);
     if (several) {
       segmentMany(*options, *inputs, *threads);
     } else {

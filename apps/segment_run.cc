@@ -79,6 +79,28 @@ void refuseOverwritingTheRun(const SegmentOptions& options) {
   }
 }
 
+// Refuses an input inside the folders of -o that a run replaces (`overlay/`, `debug/`: with
+// --overwrite the user's frames there were deleted), and, with --debug, --stats or --overlay
+// inside `debug/`, where the pictures would replace them or the file stand in their way.
+void refuseTheRunsOwnFolders(const SegmentOptions& options, const std::string& input) {
+  const fs::path dir(options.output_dir);
+  for (const char* owned : {"overlay", "debug"}) {
+    const std::string folder = (dir / owned).string();
+    if (!input.empty() && isSameOrInside(input, folder)) {
+      throw UsageError("INPUT '" + options.input + "' lies in '" + folder +
+                       "', which the run's own pictures replace");
+    }
+  }
+  if (!options.debug) return;
+  for (const auto& [option, path] : {std::pair<const char*, std::string>{"--stats", options.stats_file},
+                                     {"--overlay", options.overlay}}) {
+    if (!path.empty() && isSameOrInside(path, (dir / "debug").string())) {
+      throw UsageError(std::string(option) + " '" + path + "' lies in '" +
+                       (dir / "debug").string() + "', where --debug writes its pictures");
+    }
+  }
+}
+
 // Refuses outputs that would overwrite the input, the run's own files or one another, and empty
 // or unknown output names.
 void checkOutputPaths(const SegmentOptions& options) {
@@ -91,6 +113,7 @@ void checkOutputPaths(const SegmentOptions& options) {
   }
   refuseSharedOutputs({{"--stats", options.stats_file}, {"--overlay", options.overlay}});
   refuseOverwritingTheRun(options);
+  refuseTheRunsOwnFolders(options, input);
   const fs::path overlay(options.overlay);
   std::error_code error;
   if (!options.overlay.empty() && overlay.has_extension() && !isVideoPath(options.overlay) &&
@@ -251,12 +274,24 @@ class OverlayWriter {
     }
     std::error_code error;
     fs::rename(temporary_, target_, error);
-    if (error) throw std::runtime_error("cannot write overlay video '" + target_ + "': " + error.message());
+    if (error) {
+      std::remove(temporary_.c_str());
+      throw std::runtime_error("cannot write overlay video '" + target_ + "': " + error.message());
+    }
   }
 
  private:
+  // Frames under 16 pixels a side are enlarged by a whole factor: FFmpeg's scaler, on the way
+  // to Motion JPEG, wrote past its buffers for them (a 4x4 clip's .avi aborted the run).
+  static cv::Size videoFrameSize(cv::Size size) {
+    constexpr int kSmallestSide = 16;
+    const int factor = (kSmallestSide + std::min(size.width, size.height) - 1) /
+                       std::min(size.width, size.height);
+    return factor > 1 ? cv::Size(size.width * factor, size.height * factor) : size;
+  }
+
   void open(cv::Size size) {
-    size_ = size;
+    size_ = videoFrameSize(size);
     const int fourcc = overlayFourcc(target_);
     if (video_.open(temporary_, cv::CAP_FFMPEG, fourcc, fps_, size_)) return;
     if (fourcc == cv::VideoWriter::fourcc('a', 'v', 'c', '1') &&

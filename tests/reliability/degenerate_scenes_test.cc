@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/videoio.hpp>
 
 #include "movseg/fields.h"
 #include "reliability/reliability_fixture.h"
@@ -224,6 +225,25 @@ TEST(DegenerateScenes, TinyAndThinFramesFallBackWithValidMasks) {
       EXPECT_TRUE(r.diagnostics.motion_fallback) << size;
       EXPECT_FALSE(r.diagnostics.first_frame) << size;
     }
+  }
+}
+
+// An overlay video of frames under 16 pixels a side is enlarged by a whole factor (FFmpeg's
+// scaler wrote past its buffers for a 4x4 Motion JPEG .avi: the run aborted).
+TEST(DegenerateScenes, TinyFramesMakeAnOverlayVideoToo) {
+  test::TempDir dir;
+  std::filesystem::create_directories(dir / "frames");
+  for (int i = 0; i < 3; ++i) {
+    cv::imwrite(dir / ("frames/0000" + std::to_string(i) + ".png"), test::texture({4, 4}, i + 1));
+  }
+  for (const char* video : {"o.avi", "o.mp4"}) {
+    const auto run = test::runCli("segment " + (dir / "frames") + " -o " + (dir / video) +
+                                  "_masks --overlay " + (dir / video) + " -q");
+    ASSERT_EQ(run.exit_code, 0) << video << run.output;
+    cv::VideoCapture played(dir / video);
+    int frames = 0;
+    for (cv::Mat frame; played.read(frame); ++frames) EXPECT_EQ(frame.size(), cv::Size(16, 16));
+    EXPECT_EQ(frames, 3) << video;
   }
 }
 

@@ -117,6 +117,12 @@ TEST(InputFaults, ASilentServerFailsAtTheTimeout) {
       test::runCli("segment " + server.url() + " -o " + dir / "out" + " --timeout 1");
   test::expectOneLineError(r, "cannot open video", test::kExitRunFailed);
   EXPECT_LT(Clock::now() - start, std::chrono::seconds(8));  // the default timeout is 10 s
+  // A timeout under half a millisecond is a millisecond, not 0 ("no limit": it waited for ever).
+  const auto tiny_start = Clock::now();
+  test::expectOneLineError(
+      test::runCli("segment " + server.url() + " -o " + dir / "out2" + " --timeout 0.0001"),
+      "cannot open video", test::kExitRunFailed);
+  EXPECT_LT(Clock::now() - tiny_start, std::chrono::seconds(8));
 }
 
 // The first half of a 100-frame video, served, then silence: a stream that stalls mid-way.

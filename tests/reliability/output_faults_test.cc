@@ -452,6 +452,24 @@ TEST_F(OutputFaults, NamesThatAreNotUtf8AreReportedWithAReplacementCharacter) {
   EXPECT_NO_THROW(read(dir_ / "eval.json"));
 }
 
+// The folders of -o that a run replaces (overlay/, debug/) hold no input (with --overwrite the
+// user's frames there were deleted), and with --debug no other output lies in debug/ (the
+// pictures replaced an overlay there; a stats file there failed the run at its end).
+TEST_F(OutputFaults, TheRunsOwnFoldersHoldNoInputAndNoOtherOutput) {
+  const std::string out = dir_ / "out";
+  ASSERT_EQ(test::runCli("segment " + frames() + " -o " + out + " --overlay -q").exit_code, 0);
+  test::expectOneLineError(test::runCli("segment " + out + "/overlay -o " + out + " --overwrite"),
+                           "which the run's own pictures replace", test::kExitUsage);
+  EXPECT_EQ(test::filesIn(out + "/overlay").size(), 12u);
+  for (const std::string& option : {std::string(" --overlay "), std::string(" --stats ")}) {
+    test::expectOneLineError(
+        test::runCli("segment " + frames() + " -o " + dir_ / "dbg" + " --debug" + option +
+                     dir_ / "dbg/debug/mask"),
+        "where --debug writes its pictures", test::kExitUsage);
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "dbg/debug"));
+}
+
 // synth and demo write into a folder that holds files only when told to, and then leave no
 // frame of a longer earlier sequence behind.
 TEST_F(OutputFaults, SynthAndDemoReplaceAFolderThatHoldsFilesOnlyWithOverwrite) {
