@@ -74,25 +74,36 @@ GType modeType() {
 
 State& stateOf(gpointer object) { return *GST_MOVSEG(object)->state; }
 
-// A refused text is reported when the stream starts, as a refused parameter is; until a good
-// one replaces it the region stays as it was.
-void setIgnore(State* state, const char* text) {
-  state->ignore = text == nullptr ? "" : text;
+// Whether `id` names a property of the element.
+bool isPropertyId(guint id) {
+  return (id >= kPropMode && id < kFirstParamProp) ||
+         (id >= kFirstParamProp && id - kFirstParamProp < movseg::paramFields().size());
+}
+
+// A refused text, set before the stream starts, is reported when it starts, as a refused
+// parameter is (it reads back as given); until a good one replaces it the region stays as it
+// was. Set while the stream runs, it is only refused.
+void setIgnore(State* state, const char* given, bool running) {
+  const std::string text = given == nullptr ? "" : given;
   try {
-    state->ignored = movseg::gst::parseIgnoredRectangles(state->ignore);
+    state->ignored = movseg::gst::parseIgnoredRectangles(text);
+    state->ignore = text;
     state->ignore_refused.clear();
     state->ignore_changed = true;
   } catch (const std::invalid_argument& e) {
+    if (running) throw;
+    state->ignore = text;
     state->ignore_refused = e.what();
   }
 }
 
-// Sets a property under the lock; returns why its value was refused ("" if it was not).
-std::string setLocked(State* state, guint id, const GValue* value) {
+// Sets a property under the lock. A value refused while the stream runs throws
+// std::invalid_argument and leaves the old one; refused before, it is kept to fail the start.
+void setLocked(State* state, guint id, const GValue* value, bool running) {
   switch (id) {
-    case kPropMode: state->mode = static_cast<Mode>(g_value_get_enum(value)); return "";
-    case kPropPostMessages: state->post_messages = g_value_get_boolean(value); return "";
-    case kPropIgnore: setIgnore(state, g_value_get_string(value)); return state->ignore_refused;
+    case kPropMode: state->mode = static_cast<Mode>(g_value_get_enum(value)); return;
+    case kPropPostMessages: state->post_messages = g_value_get_boolean(value); return;
+    case kPropIgnore: setIgnore(state, g_value_get_string(value), running); return;
     default: break;
   }
   const std::size_t field = id - kFirstParamProp;
@@ -100,28 +111,33 @@ std::string setLocked(State* state, guint id, const GValue* value) {
     movseg::gst::setParamProperty(&state->params, field, value);
     state->refused.erase(field);
     state->params_changed = true;
-    return "";
   } catch (const std::invalid_argument& e) {
-    return state->refused[field] = e.what();  // reported when the stream starts, as an error
+    if (running) throw;
+    state->refused[field] = e.what();  // reported when the stream starts, as an error
   }
 }
 
 // A refused value is an error when the stream starts (start()); set while it runs, the old
-// value stays and a warning on the bus says why. A new mode takes effect when the output caps
-// are negotiated again, which it asks for.
+// value stays and a warning on the bus says why (posted without the lock, which a bus handler
+// reading a property would wait for). A new mode takes effect when the output caps are
+// negotiated again, which it asks for.
 void setProperty(GObject* object, guint id, const GValue* value, GParamSpec* spec) {
-  if (id != kPropMode && id != kPropPostMessages && id != kPropIgnore &&
-      (id < kFirstParamProp || id - kFirstParamProp >= movseg::paramFields().size())) {
+  if (!isPropertyId(id)) {
     G_OBJECT_WARN_INVALID_PROPERTY_ID(object, id, spec);
     return;
   }
   State& state = stateOf(object);
+  const bool running = GST_STATE(object) > GST_STATE_READY;
   std::string refused;
   {
     const std::lock_guard<std::mutex> lock(state.lock);
-    refused = setLocked(&state, id, value);
+    try {
+      setLocked(&state, id, value, running);
+    } catch (const std::invalid_argument& e) {
+      refused = e.what();
+    }
   }
-  if (!refused.empty() && GST_STATE(object) > GST_STATE_READY) {
+  if (!refused.empty()) {
     GST_ELEMENT_WARNING(object, LIBRARY, SETTINGS, ("%s", refused.c_str()),
                         ("set while the stream runs: the earlier value stays"));
   }
@@ -137,23 +153,26 @@ void getProperty(GObject* object, guint id, GValue* value, GParamSpec* spec) {
     case kPropIgnore: g_value_set_string(value, state.ignore.c_str()); return;
     default: break;
   }
-  if (id < kFirstParamProp || id - kFirstParamProp >= movseg::paramFields().size()) {
+  if (!isPropertyId(id)) {
     G_OBJECT_WARN_INVALID_PROPERTY_ID(object, id, spec);
     return;
   }
   movseg::gst::getParamProperty(state.params, id - kFirstParamProp, value);
 }
 
-// A refused property value stops the stream before it starts, naming the parameter.
+// A refused property value stops the stream before it starts, naming the parameter (posted
+// without the lock, as every message of the element's is).
 gboolean start(GstBaseTransform* transform) {
   State& state = stateOf(transform);
-  const std::lock_guard<std::mutex> lock(state.lock);
-  state.frame = 0;
-  state.segmenter.reset();
-  state.params_changed = true;
-  if (state.refused.empty() && state.ignore_refused.empty()) return TRUE;
-  const std::string& reason =
-      state.refused.empty() ? state.ignore_refused : state.refused.begin()->second;
+  std::string reason;
+  {
+    const std::lock_guard<std::mutex> lock(state.lock);
+    state.frame = 0;
+    state.segmenter.reset();
+    state.params_changed = true;
+    if (state.refused.empty() && state.ignore_refused.empty()) return TRUE;
+    reason = state.refused.empty() ? state.ignore_refused : state.refused.begin()->second;
+  }
   GST_ELEMENT_ERROR(transform, LIBRARY, SETTINGS, ("%s", reason.c_str()), (nullptr));
   return FALSE;
 }
@@ -205,6 +224,7 @@ GstCaps* transformCaps(GstBaseTransform* transform, GstPadDirection direction, G
 
 // The segmenter with the current settings, (re)made when they changed: a new stream start. Its
 // ignored region is drawn at the frame's size, again when either changes.
+// Throws what the segmenter's constructor and setIgnoredRegion() throw.
 movseg::Segmenter* segmenterFor(GstVideoFilter* filter, cv::Size frame_size,
                                 bool* post_messages) {
   State& state = stateOf(filter);
@@ -212,12 +232,7 @@ movseg::Segmenter* segmenterFor(GstVideoFilter* filter, cv::Size frame_size,
   *post_messages = state.post_messages;
   if (state.params_changed || !state.segmenter) {
     state.params_changed = false;
-    try {
-      state.segmenter.emplace(state.params);
-    } catch (const std::invalid_argument& e) {
-      GST_ELEMENT_ERROR(filter, LIBRARY, SETTINGS, ("%s", e.what()), (nullptr));
-      return nullptr;
-    }
+    state.segmenter.emplace(state.params);
     state.region_size = cv::Size();
   }
   if (state.ignore_changed || state.region_size != frame_size) {
@@ -259,9 +274,7 @@ GstFlowReturn transformFrame(GstVideoFilter* filter, GstVideoFrame* in, GstVideo
   // A frame the segmenter refuses (one beyond its size limits) stops the stream with an error
   // on the bus, as `movseg segment` stops with one line; an exception must not cross into C.
   try {
-    movseg::Segmenter* segmenter = segmenterFor(filter, frame.size(), &post_messages);
-    if (segmenter == nullptr) return GST_FLOW_ERROR;
-    result = segmenter->process(frame);
+    result = segmenterFor(filter, frame.size(), &post_messages)->process(frame);
     writeOutput(frame, result, state.frame, out);
   } catch (const std::exception& e) {
     GST_ELEMENT_ERROR(filter, STREAM, FAILED, ("%s", e.what()), (nullptr));

@@ -224,6 +224,28 @@ assert warnings == ["invalid parameter: lk_window must be odd and in [3, 101], g
 assert stamps == [True, True, True, True, False], stamps
 src.emit("end-of-stream")
 pipe.set_state(Gst.State.NULL)
+# The value refused while playing was not kept: the stream starts again.
+pipe.set_state(Gst.State.PLAYING)
+form, pixels = frame(5)
+assert form == "GRAY8", form
+pipe.set_state(Gst.State.NULL)
+
+# A refused value set before the start fails it, and the error is posted without the element's
+# lock held: a bus sync handler reading a property then does not wait for ever.
+pipe = Gst.parse_launch("videotestsrc num-buffers=2 ! videoconvert ! movseg name=m lk-window=12 "
+                        "! fakesink")
+element = pipe.get_by_name("m")
+read = []
+def on_message(bus, message):
+    if message.type == Gst.MessageType.ERROR:
+        read.append(element.get_property("lk-window"))
+    return Gst.BusSyncReply.PASS
+pipe.get_bus().set_sync_handler(on_message)
+pipe.set_state(Gst.State.PLAYING)
+error = pipe.get_bus().timed_pop_filtered(30 * Gst.SECOND, Gst.MessageType.ERROR)
+pipe.set_state(Gst.State.NULL)
+assert error is not None and "lk_window must be odd" in error.parse_error()[0].message
+assert read == [11], read
 PY
 }
 
