@@ -19,10 +19,11 @@ status is 1 when any failed, 2 for bad arguments, 130 when interrupted.
 import argparse
 import contextlib
 import csv
-import glob
+import ctypes
 import io
 import json
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -101,9 +102,9 @@ def named_inputs(sources):
     named = {}
     for source in sources:
         name = input_name(source)
-        if name == SUMMARY:
-            raise ValueError(f"'{source}' would write OUTDIR/{SUMMARY}/, the summary's name: "
-                             "rename it")
+        if name == SUMMARY or name.startswith("."):
+            raise ValueError(f"'{source}' would write OUTDIR/{name}/: the summary and hidden "
+                             "names are the batch's own; rename it")
         if name in named:
             raise ValueError(f"'{named[name]}' and '{source}' would both write OUTDIR/{name}/: "
                              "rename one")
@@ -121,15 +122,20 @@ def is_batch_result(folder):
     return os.path.isfile(os.path.join(folder, "summary.json"))
 
 
-def refuse_replacing_what_is_not_ours(named, output):
+def refuse_replacing_what_is_not_ours(named, output, read):
     """OUTDIR/<name>/ is replaced whole when an input is redone: it must be an earlier result of
-    a batch, never a folder of the user's, and neither it nor OUTDIR may hold an input."""
-    for name, source in named.items():
-        folder = os.path.join(output, name)
-        if is_inside(source, folder):
-            raise ValueError(f"'{source}' lies in its own output {folder}: choose another OUTDIR")
+    a batch, never a folder of the user's; no input, nor any other file the run reads (`read`:
+    --ignore, --gt), may lie in one, and OUTDIR in no input."""
+    folders = [os.path.join(output, name) for name in named]
+    for path in [*named.values(), *read]:
+        for folder in folders:
+            if is_inside(path, folder):
+                raise ValueError(f"'{path}' lies in {folder}, which the batch replaces: choose "
+                                 "another OUTDIR")
+    for source in named.values():
         if is_inside(output, source):
             raise ValueError(f"OUTDIR {output} lies in the input '{source}'")
+    for folder in folders:
         if os.path.lexists(folder) and not is_batch_result(folder):
             raise ValueError(f"{folder} exists and is no batch result (no summary.json): "
                              "move it or choose another OUTDIR")
@@ -143,8 +149,7 @@ def refuse_bad_segment_options(options):
                          "on PATH")
     with tempfile.TemporaryDirectory() as scratch:
         missing = os.path.join(scratch, "none")
-        done = subprocess.run([cli_path(), "segment", missing, "-o", missing, "-q", *options],
-                              capture_output=True, text=True)
+        done = run_tool("segment", missing, "-o", missing, "-q", *options)
     if done.returncode == 2:
         raise ValueError(failure(done).removeprefix("movseg: error: "))
 
@@ -160,8 +165,7 @@ def failure(done):
 def scores(masks, truth, scratch):
     """J and F of the masks against the ground truth, by `movseg eval`."""
     report = os.path.join(scratch, "eval.json")
-    done = subprocess.run([cli_path(), "eval", masks, truth, "--json", report],
-                          capture_output=True, text=True)
+    done = run_tool("eval", masks, truth, "--json", report)
     if done.returncode != 0:
         raise RuntimeError(failure(done))
     with open(report, encoding="utf-8") as text:
@@ -184,11 +188,23 @@ def publish(scratch, folder):
         shutil.rmtree(old)
 
 
-def end_with_the_worker():
-    """A worker killed while the tool runs would leave it writing into OUTDIR for nobody."""
-    import ctypes
+_PRCTL = ctypes.CDLL(None, use_errno=True).prctl  # looked up here, not in a forked child
+_PR_SET_PDEATHSIG = 1
 
-    ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+
+def run_tool(*args):
+    """The tool run with `args` (output captured). It dies with the process that started it (a
+    worker killed mid-task would leave it writing into OUTDIR for nobody); the child does no
+    more than two system calls between fork and exec, as a child of a threaded process must."""
+    parent = os.getpid()
+
+    def die_with_parent():
+        _PRCTL(_PR_SET_PDEATHSIG, signal.SIGKILL)
+        if os.getppid() != parent:  # the parent died before the call above
+            os._exit(1)
+
+    return subprocess.run([cli_path(), *args], capture_output=True, text=True,
+                          preexec_fn=die_with_parent)
 
 
 def segment_input(name, source, output, options, truth):
@@ -203,9 +219,7 @@ def segment_input(name, source, output, options, truth):
             raise RuntimeError(f"no ground truth '{truth}'")
         masks, stats = os.path.join(scratch, "masks"), os.path.join(scratch, "stats.jsonl")
         start = time.monotonic()
-        done = subprocess.run([cli_path(), "segment", source, "-o", masks, "--stats", stats, "-q",
-                               *options], capture_output=True, text=True,
-                              preexec_fn=end_with_the_worker)
+        done = run_tool("segment", source, "-o", masks, "--stats", stats, "-q", *options)
         if done.returncode != 0:
             raise RuntimeError(failure(done))
         seconds = time.monotonic() - start
@@ -225,6 +239,10 @@ def segment_input(name, source, output, options, truth):
     return row
 
 
+def failed_row(name, source, error):
+    return {"name": name, "input": source, "status": "failed", "error": error}
+
+
 def finished_row(output, name, status):
     """The summary row of a finished input, with `status`; None when it has none."""
     try:
@@ -239,7 +257,7 @@ def write_csv(path, rows):
     writer = csv.DictWriter(text, COLUMNS, extrasaction="ignore")
     writer.writeheader()
     writer.writerows(rows)
-    scratch = path + ".partial"
+    scratch = os.path.join(os.path.dirname(path), "." + os.path.basename(path) + ".partial")
     with open(scratch, "w", encoding="utf-8") as out:
         out.write(text.getvalue())
     os.replace(scratch, path)
@@ -276,10 +294,20 @@ def dask_client(args):
         yield client
 
 
+def published_since(output, name, started):
+    """The row of OUTDIR/<name>/ as done, when this run published it (after `started`)."""
+    try:
+        published = os.stat(os.path.join(output, name, "summary.json")).st_mtime
+    except OSError:
+        return None
+    return finished_row(output, name, "done") if published >= started else None
+
+
 def run(args):
+    started = time.time()
     output = os.path.abspath(args.output)
     named = named_inputs(expand_inputs(args.inputs))
-    refuse_replacing_what_is_not_ours(named, output)
+    refuse_replacing_what_is_not_ours(named, output, [p for p in (args.ignore, args.gt) if p])
     if args.ignore and not os.path.isfile(args.ignore):
         raise ValueError(f"--ignore: no file '{args.ignore}'")
     options = (["--method", args.method] if args.method else []) + \
@@ -305,10 +333,10 @@ def run(args):
         interrupted = True
     finally:
         remove_scratch_folders(output, todo)
-    # An input whose task published its folder as the run was interrupted is done all the same.
-    ordered = [rows.get(name) or finished_row(output, name, "done") or
-               {"name": name, "input": named[name], "status": "failed", "error": "interrupted"}
-               for name in named]
+    # An input whose task published its folder as the run was interrupted is done all the same
+    # (a folder of an earlier run, which --force was redoing, is not).
+    ordered = [rows.get(name) or published_since(output, name, started) or
+               failed_row(name, named[name], "interrupted") for name in named]
     write_csv(os.path.join(output, SUMMARY), ordered)
     failed = sum(row["status"] == "failed" for row in ordered)
     print(f"batch: {count - failed} of {count} inputs segmented, {failed} failed"
@@ -318,10 +346,13 @@ def run(args):
 
 
 def remove_scratch_folders(output, names):
-    """What a task killed with its worker (or interrupted) left: its hidden scratch folder."""
+    """What a task killed with its worker (or interrupted) left: its hidden scratch folder,
+    .<name>.<32 hex digits>.partial (and .old, as publish() names the one it replaces)."""
     for name in names:
-        for scratch in glob.glob(os.path.join(output, f".{glob.escape(name)}.*.partial*")):
-            shutil.rmtree(scratch, ignore_errors=True)
+        own = re.compile(rf"\.{re.escape(name)}\.[0-9a-f]{{32}}\.partial(\.old)?")
+        for entry in os.listdir(output):
+            if own.fullmatch(entry):
+                shutil.rmtree(os.path.join(output, entry), ignore_errors=True)
 
 
 def segment_on_dask(args, named, todo, output, options, rows):
@@ -338,8 +369,7 @@ def segment_on_dask(args, named, todo, output, options, rows):
             try:
                 rows[name] = future.result()
             except Exception as error:  # the worker itself failed (killed, lost)
-                rows[name] = {"name": name, "input": named[name], "status": "failed",
-                              "error": f"{type(error).__name__}: {error}"}
+                rows[name] = failed_row(name, named[name], f"{type(error).__name__}: {error}")
             print(f"batch: [{len(rows)}/{count}] {name} {describe(rows[name])}", flush=True)
 
 
@@ -355,3 +385,6 @@ def main(argv):
     except (OSError, ValueError) as error:
         print(f"movseg batch: error: {error}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:  # before the inputs ran (run() reports one while they do)
+        print("movseg batch: interrupted", file=sys.stderr)
+        return 130

@@ -98,9 +98,12 @@ def test_folders_it_did_not_write_and_inputs_in_their_own_output_are_never_repla
     before = sorted(os.listdir(data / "walk" / "frames"))
     (tmp_path / "out" / "run").mkdir(parents=True)  # a folder of the user's, no summary.json
     for sources, output, words in [
-            ([data / "walk" / "frames"], data, "lies in its own output"),  # data/walk/frames
+            ([data / "walk" / "frames"], data, "which the batch replaces"),  # data/walk/frames
             ([data / "walk" / "frames"], data / "walk" / "frames" / "out", "lies in the input"),
-            ([inputs / "run" / "frames"], tmp_path / "out", "is no batch result")]:
+            ([inputs / "run" / "frames"], tmp_path / "out", "is no batch result"),
+            # an input inside another input's result folder, which --force would replace
+            ([inputs / "walk" / "frames", tmp_path / "out2" / "walk" / "masks"], tmp_path / "out2",
+             "which the batch replaces")]:
         done = batch(*map(str, sources), "-o", str(output), "--force")
         assert done.returncode == 2 and words in done.stderr, done.stdout + done.stderr
         assert done.stderr.count("\n") == 1 and "batch: [" not in done.stdout
@@ -110,8 +113,10 @@ def test_folders_it_did_not_write_and_inputs_in_their_own_output_are_never_repla
 
 def test_an_input_named_as_the_summary_and_an_empty_list_are_refused(inputs, tmp_path):
     (tmp_path / "summary.csv.mp4").write_bytes((inputs / "bad.mp4").read_bytes())
+    (tmp_path / ".hidden.mp4").write_bytes((inputs / "bad.mp4").read_bytes())
     (tmp_path / "none.txt").write_text("# nothing yet\n")
-    for source, words in [("summary.csv.mp4", "the summary's name"), ("none.txt", "no inputs")]:
+    for source, words in [("summary.csv.mp4", "the batch's own"), (".hidden.mp4", "the batch's own"),
+                          ("none.txt", "no inputs")]:
         done = batch(str(tmp_path / source), "-o", str(tmp_path / "out"))
         assert done.returncode == 2 and words in done.stderr, done.stdout + done.stderr
     assert not (tmp_path / "out").exists()
