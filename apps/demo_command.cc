@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <cerrno>
 #include <cstdio>
 #include <stdexcept>
 
@@ -29,11 +30,14 @@ struct DemoOptions {
 };
 
 // The default folder, replaced on each run, sits at a name anyone may take in a shared /tmp: a
-// link there, or a folder of another user's, would have the demo replace files elsewhere.
+// link there, or a folder of another user's, would have the demo replace files elsewhere. It is
+// made first (a name taken between a check and the writes would pass the check), and then, in a
+// sticky /tmp, nobody else can move it.
 std::string ownDefaultFolder(const fs::path& folder) {
   struct stat status {};
-  if (lstat(folder.c_str(), &status) == 0 &&
-      (!S_ISDIR(status.st_mode) || status.st_uid != geteuid())) {
+  if ((::mkdir(folder.c_str(), 0700) != 0 && errno != EEXIST) ||
+      lstat(folder.c_str(), &status) != 0 || !S_ISDIR(status.st_mode) ||
+      status.st_uid != geteuid()) {
     throw std::runtime_error("'" + folder.string() +
                              "' is a link, a file or another user's folder, which the demo "
                              "would replace: remove it or give -o");

@@ -81,8 +81,8 @@ class Segmenter {
   void setIgnoredRegion(const cv::Mat& region);
 
   // The previous frame warped into the last processed frame's coordinates (8-bit BGR); empty
-  // before the second frame, and always with `mog2`, which fits no camera model. Throws std::runtime_error when OpenCV cannot warp it (a frame of
-  // 32767 pixels or more a side).
+  // before the second frame, and always with `mog2`, which fits no camera model. Throws
+  // std::runtime_error when OpenCV cannot warp it (a frame of 32767 pixels or more a side).
   cv::Mat compensatedPreviousFrame() const;
 
   const Params& params() const;

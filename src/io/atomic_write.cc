@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <iostream>
 #include <stdexcept>
 #include <vector>
 
@@ -90,6 +91,10 @@ Target resolveTarget(const std::string& path) {
 // would not even end on SIGINT.
 int openInPlace(const Target& target, const std::string& path) {
   if (target.descriptor >= 0) {
+    // What the process printed there before comes first: its streams' buffers go out now.
+    std::cout.flush();
+    std::cerr.flush();
+    std::fflush(nullptr);
     const int fd = ::fcntl(target.descriptor, F_DUPFD_CLOEXEC, 0);
     if (fd < 0) throw writeError(path, errno);
     return fd;

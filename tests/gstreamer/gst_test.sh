@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The GStreamer element movseg, through GStreamer's own tools.
+# The GStreamer element movseg, through GStreamer's own tools, and from Python (python3-gi,
+# which scripts/install-deps.sh installs) where an application's thread must act while it plays.
 # Usage: gst_test.sh CHECK BUILD_DIR WORK_DIR    (CHECK: one of the functions below)
 # GST_PLUGIN_PATH points at the build's plugin; each check has its own registry file.
 set -euo pipefail

@@ -420,10 +420,16 @@ TEST_F(OutputFaults, StandardOutputAsAnOutputIsWrittenThroughItsDescriptor) {
   EXPECT_EQ(logged_stats, 12) << log.str();
   EXPECT_GE(logged_summaries, 1) << log.str();
 
+  // eval's table, printed first, comes first in a file too: the streams are flushed before.
   const test::CommandResult report = test::runCli(
-      "eval " + (*clip_ / "clip/masks") + " " + (*clip_ / "clip/masks") + " --json /dev/stdout");
+      "eval " + (*clip_ / "clip/masks") + " " + (*clip_ / "clip/masks") + " --json /dev/stdout > " +
+      dir_ / "report");
   ASSERT_EQ(report.exit_code, 0) << report.output;
-  EXPECT_NE(report.output.find("\"mean\": {"), std::string::npos) << report.output;
+  std::ostringstream text;
+  text << std::ifstream(dir_ / "report").rdbuf();
+  const std::size_t json = text.str().find("{\n");
+  EXPECT_NE(text.str().find("\"mean\": {"), std::string::npos) << text.str();
+  EXPECT_LT(text.str().find("eval: "), json) << text.str();
   EXPECT_FALSE(anyPartFile(dir_.path()));
 }
 
