@@ -210,8 +210,13 @@ void checkCdnetLevels(const cv::Mat& labels, const std::string& path) {
                            ", not a CDnet label (0, 50, 85, 170 or 255)");
 }
 
+// CDnet's labels are 8-bit grey levels: a 16-bit file, which reading as 8-bit would scale (255
+// to 0, motion to static), is refused.
 cv::Mat readCdnetMask(const std::string& path, cv::Mat* ignore) {
-  const cv::Mat labels = readImage(path, cv::IMREAD_GRAYSCALE);
+  const cv::Mat labels = readImage(path, cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
+  if (labels.depth() != CV_8U) {
+    throw std::runtime_error("'" + path + "' is not 8-bit: CDnet's labels are 8-bit grey levels");
+  }
   checkCdnetLevels(labels, path);
   const cv::Mat ignored = labelledAs(labels, {kCdnetOutsideRoi, kCdnetUnknown});
   if (ignore != nullptr) *ignore = cv::countNonZero(ignored) > 0 ? ignored : cv::Mat();

@@ -178,7 +178,10 @@ std::vector<std::string> folderImages(const std::string& folder) {
 std::vector<std::string> listImages(const std::string& folder) {
   std::vector<std::string> files;
   for (const auto& entry : fs::directory_iterator(folder)) {
-    if (entry.is_regular_file() && isImageFile(entry.path())) files.push_back(entry.path().string());
+    const bool hidden = entry.path().filename().string().front() == '.';  // macOS's ._00002.png
+    if (!hidden && entry.is_regular_file() && isImageFile(entry.path())) {
+      files.push_back(entry.path().string());
+    }
   }
   std::sort(files.begin(), files.end());
   return files;

@@ -44,7 +44,8 @@ class FrameSource {
 // a URL. Outputs must stay out of it.
 std::string inputPath(const std::string& input);
 
-// The image files of a folder (by extension, case-insensitive), sorted by name.
+// The image files of a folder (by extension, case-insensitive; hidden ones, such as macOS's
+// `._00002.png`, are not frames), sorted by name.
 std::vector<std::string> listImages(const std::string& folder);
 
 // cv::imread, but an empty Mat for every file it cannot decode: OpenCV throws instead when a

@@ -133,6 +133,12 @@ TEST(EvalDataset, CdnetLevels) {
   labels.at<uchar>(0, 0) = 128;
   writeImage(dir / "seq/groundtruth", "gt000001.png", labels);
   expectError([&] { readGtMask(sequence, sequence.frames.at(0), &ignore); }, "grey level 128");
+  // Nor is a 16-bit file, which read as 8-bit took 255 (motion) for 0 (static).
+  cv::Mat deep;
+  labels.at<uchar>(0, 0) = 0;
+  labels.convertTo(deep, CV_16U);
+  writeImage(dir / "seq/groundtruth", "gt000001.png", deep);
+  expectError([&] { readGtMask(sequence, sequence.frames.at(0), &ignore); }, "is not 8-bit");
 }
 
 TEST(EvalDataset, CdnetCountsTemporalRoiOnlyAndMatchesSegmentNumbering) {

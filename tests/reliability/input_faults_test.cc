@@ -109,6 +109,21 @@ TEST(InputFaults, ATruncatedVideoIsReported) {
   }
 }
 
+// macOS leaves `._NAME` files beside a copied folder's files: not frames (one stopped the run).
+TEST(InputFaults, HiddenFilesAreNotFrames) {
+  const test::TempDir dir;
+  fs::create_directories(dir / "frames");
+  for (int i = 0; i < 3; ++i) {
+    cv::imwrite(dir / ("frames/0000" + std::to_string(i) + ".png"), test::texture({64, 48}, i + 1));
+  }
+  std::ofstream(dir / "frames/._00001.png") << "Mac OS X resource fork";
+  const test::CommandResult r =
+      test::runCli("segment " + dir / "frames" + " -o " + dir / "out" + " -q");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(test::filesIn(dir / "out"),
+            (std::vector<std::string>{"00000.png", "00001.png", "00002.png", "movseg-run.json"}));
+}
+
 TEST(InputFaults, ASilentServerFailsAtTheTimeout) {
   const test::TempDir dir;
   const test::LocalServer server;
