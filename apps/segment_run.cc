@@ -61,11 +61,17 @@ bool isVideoPath(const std::string& path) {
 // ---- paths ------------------------------------------------------------------------------------
 
 // Refuses --stats or --overlay where the run writes its own files: the output folder (overlay
-// pictures there would replace the masks), its manifest or one of its masks.
+// pictures there would replace the masks), its manifest or one of its masks, and, with --debug,
+// its `debug/` folder (the pictures would replace them, or the file stand in their way).
 void refuseOverwritingTheRun(const SegmentOptions& options) {
+  const std::string debug = (fs::path(options.output_dir) / "debug").string();
   for (const auto& [option, path] : {std::pair<const char*, std::string>{"--stats", options.stats_file},
                                      {"--overlay", options.overlay}}) {
     if (path.empty()) continue;
+    if (options.debug && isSameOrInside(path, debug)) {
+      throw UsageError(std::string(option) + " '" + path + "' lies in '" + debug +
+                       "', where --debug writes its pictures");
+    }
     const fs::path folder = fs::path(path).parent_path();
     const std::string name = fs::path(path).filename().string();
     const bool in_output_folder =
@@ -80,23 +86,14 @@ void refuseOverwritingTheRun(const SegmentOptions& options) {
 }
 
 // Refuses an input inside the folders of -o that a run replaces (`overlay/`, `debug/`: with
-// --overwrite the user's frames there were deleted), and, with --debug, --stats or --overlay
-// inside `debug/`, where the pictures would replace them or the file stand in their way.
-void refuseTheRunsOwnFolders(const SegmentOptions& options, const std::string& input) {
-  const fs::path dir(options.output_dir);
+// --overwrite the user's frames there were deleted).
+void refuseInputInTheRunsFolders(const SegmentOptions& options, const std::string& input) {
+  if (input.empty()) return;
   for (const char* owned : {"overlay", "debug"}) {
-    const std::string folder = (dir / owned).string();
-    if (!input.empty() && isSameOrInside(input, folder)) {
+    const std::string folder = (fs::path(options.output_dir) / owned).string();
+    if (isSameOrInside(input, folder)) {
       throw UsageError("INPUT '" + options.input + "' lies in '" + folder +
                        "', which the run's own pictures replace");
-    }
-  }
-  if (!options.debug) return;
-  for (const auto& [option, path] : {std::pair<const char*, std::string>{"--stats", options.stats_file},
-                                     {"--overlay", options.overlay}}) {
-    if (!path.empty() && isSameOrInside(path, (dir / "debug").string())) {
-      throw UsageError(std::string(option) + " '" + path + "' lies in '" +
-                       (dir / "debug").string() + "', where --debug writes its pictures");
     }
   }
 }
@@ -113,7 +110,7 @@ void checkOutputPaths(const SegmentOptions& options) {
   }
   refuseSharedOutputs({{"--stats", options.stats_file}, {"--overlay", options.overlay}});
   refuseOverwritingTheRun(options);
-  refuseTheRunsOwnFolders(options, input);
+  refuseInputInTheRunsFolders(options, input);
   const fs::path overlay(options.overlay);
   std::error_code error;
   if (!options.overlay.empty() && overlay.has_extension() && !isVideoPath(options.overlay) &&

@@ -25,7 +25,7 @@ Worker::Worker() : process_(::getpid()), state_(std::make_unique<State>()) {
 }
 
 Worker::~Worker() {
-  if (::getpid() != process_) {
+  if (inAnotherProcess()) {
     (void)state_.release();  // the thread is the parent's: nothing here to join or to wake
     return;
   }
@@ -37,8 +37,10 @@ Worker::~Worker() {
   state_->thread.join();
 }
 
+bool Worker::inAnotherProcess() const { return ::getpid() != process_; }
+
 void Worker::refuseInAnotherProcess() const {
-  if (::getpid() != process_) {
+  if (inAnotherProcess()) {
     throw std::runtime_error(
         "this object's thread was started in the process it was forked from, and a forked "
         "process has none: make the object in this process (or use one thread)");

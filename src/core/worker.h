@@ -30,6 +30,7 @@ class Worker {
   // In a process forked from the owner's the thread does not exist: start() and wait() throw
   // std::runtime_error, and the destructor leaves the state as it is (its mutex and condition
   // variables may be held by the thread that is gone; destroying them would wait for it).
+  bool inAnotherProcess() const;
   void refuseInAnotherProcess() const;
 
   pid_t process_;
