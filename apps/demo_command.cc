@@ -88,7 +88,7 @@ void addDemoCommand(CLI::App& app) {
                   "Frames of the clip, at least 2 (the first has no motion to score)")
       ->capture_default_str();
   cmd->add_option("--clip-seed", options->synth.seed, "Seed of the synthetic clip")
-      ->check(kNotNegative)
+      ->check(kSeed)
       ->capture_default_str();
   addParamsOptions(cmd, &options->params);
   cmd->callback([options, cmd] {

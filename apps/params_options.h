@@ -3,6 +3,8 @@
 // --set name=value for the same. Shared by segment, demo and bench.
 #pragma once
 
+#include <charconv>
+#include <cstdint>
 #include <set>
 #include <string>
 
@@ -12,13 +14,17 @@
 
 namespace movseg::cli {
 
-// For counts and seeds: rejects a leading minus sign with a short message (CLI11's
-// NonNegativeNumber would print the largest double as the range's end).
-inline const CLI::Validator kNotNegative(
+// For seeds, 64-bit unsigned: a value outside [0, 2^64 - 1] refused with a short message, as
+// --set seed= refuses it (CLI11 clamped a larger one to 2^64 - 1, and its NonNegativeNumber
+// would print the largest double as the range's end).
+inline const CLI::Validator kSeed(
     [](std::string& input) -> std::string {
-      return !input.empty() && input[0] == '-' ? "must not be negative" : "";
+      std::uint64_t value = 0;
+      const char* end = input.data() + input.size();
+      const auto [at, error] = std::from_chars(input.data(), end, value);
+      return error == std::errc() && at == end ? "" : "must be an integer in [0, 2^64 - 1]";
     },
-    "NOT NEGATIVE");
+    "0..2^64-1");
 
 // Adds an option per field of Params except those named in `except`, and --set. Values are
 // parsed and range-checked by movseg::setParam as they are read, so a bad value is refused by

@@ -563,8 +563,19 @@ StopOnSignal::~StopOnSignal() {
 
 bool StopOnSignal::stopped() { return g_stop; }
 
+namespace {
+
+// The timestamps tell where the source ended (an estimated count from a duration that has them).
+bool endsByTime(const SourceReport& source) {
+  return !source.exact_count && source.duration_seconds > 0 && source.reached_seconds >= 0;
+}
+
+}  // namespace
+
 bool SegmentSummary::truncated() const {
-  if (interrupted || reached_max_frames || source.expected_frames < 0) return false;
+  if (interrupted || reached_max_frames) return false;
+  if (endsByTime(source)) return source.reached_seconds + 1 < source.duration_seconds;
+  if (source.expected_frames < 0) return false;
   const int tolerance = source.exact_count ? 0 : static_cast<int>(std::ceil(source.fps));
   return frames + tolerance < source.expected_frames;
 }
@@ -735,7 +746,12 @@ std::string describeInputProblems(const SegmentSummary& summary) {
   if (source.decode_errors > 0) {
     add(std::to_string(source.decode_errors) + " decode errors (last: " + source.last_error + ")");
   }
-  if (summary.truncated()) {
+  if (summary.truncated() && endsByTime(source)) {
+    char seconds[96];
+    std::snprintf(seconds, sizeof seconds, "frames up to %.1f s of %.1f s", source.reached_seconds,
+                  source.duration_seconds);
+    add(std::string(seconds) + ": the video is truncated");
+  } else if (summary.truncated()) {
     add(std::to_string(summary.frames) + " of " + (source.exact_count ? "" : "about ") +
         std::to_string(source.expected_frames) + " frames: the video is truncated");
   }

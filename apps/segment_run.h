@@ -50,8 +50,9 @@ struct SegmentSummary {
   bool reached_max_frames = false;
   SourceReport source;              // at the end of the run
 
-  // The source gave fewer frames than its container announced (exactly, or by more than a
-  // second of frames for an estimate), without being stopped.
+  // The source ended early without being stopped: fewer frames than its container counts, or,
+  // where the count is estimated from a duration, its frames' timestamps more than a second
+  // short of that duration (a variable frame rate makes the estimate wrong, not the time).
   bool truncated() const;
 };
 

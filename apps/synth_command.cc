@@ -59,7 +59,7 @@ void addSynthCommand(CLI::App& app) {
   cmd->add_option("--frames", synth.frames, "Number of frames")->capture_default_str();
   cmd->add_option("--size", options->size, "Frame size WIDTHxHEIGHT")->capture_default_str();
   cmd->add_option("--seed", synth.seed, "Seed: equal seeds give identical files")
-      ->check(kNotNegative)
+      ->check(kSeed)
       ->capture_default_str();
   cmd->add_option("--scene", options->scene,
                   "plane (one textured plane) or depth (3-D: ground, near and far posts, "

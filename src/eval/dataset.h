@@ -83,9 +83,10 @@ std::string predictionDir(const GtSequence& sequence, const std::string& pred_pa
 // Scores the masks of `pred_dir` (non-zero = foreground) against the sequence, matched by frame
 // number. Ground-truth frames without a prediction are counted as missing (but the first frame,
 // which no mean counts); video frames without ground truth as skipped. `movseg segment` numbers
-// its masks from 00000 by position in the frames folder: when pred_dir holds a frame 0 that the
-// video does not have (CDnet's frames start at in000001), predictions are matched to frames by
-// that position instead, and the score says so. Throws std::runtime_error naming the file when a
+// its masks from 00000 by position in the frames folder: when the frames are not numbered so and
+// pred_dir holds a frame 0 that the video does not have (CDnet's frames start at in000001), or
+// predictions 0, 1, 2, ... without a gap where the frames skip (a subsampled sequence), they are
+// matched to frames by that position instead, and the score says so. Throws std::runtime_error naming the file when a
 // mask cannot be read or a prediction's size differs from its ground truth's.
 SequenceScore scoreSequence(const GtSequence& sequence, const std::string& pred_dir);
 

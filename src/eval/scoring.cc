@@ -8,12 +8,28 @@
 namespace movseg {
 namespace {
 
-// `movseg segment` numbers its masks by position from 00000; a frame 0 that the video does not
-// have gives that numbering away (CDnet's frames start at in000001).
+// Whether `numbers` (in order) are 0, 1, 2, ... without a gap.
+template <typename Numbers>
+bool countsFromZero(const Numbers& numbers) {
+  int expected = 0;
+  for (const int number : numbers) {
+    if (number != expected++) return false;
+  }
+  return true;
+}
+
+// `movseg segment` numbers its masks by position from 00000. Where the frames folder is not
+// numbered so (CDnet's frames start at in000001; a subsampled sequence holds 00000, 00003, ...),
+// a frame 0 that the video does not have gives that numbering away, and so do predictions
+// numbered 0, 1, 2, ... without a gap: masks named by their frames' numbers would skip as the
+// frames do.
 bool numberedByPosition(const GtSequence& sequence, const std::map<int, std::string>& predictions) {
   const std::vector<int>& video = sequence.video_frames;
-  return predictions.count(0) > 0 && !video.empty() &&
-         std::find(video.begin(), video.end(), 0) == video.end();
+  if (predictions.count(0) == 0 || video.empty() || countsFromZero(video)) return false;
+  std::vector<int> numbers;
+  for (const auto& entry : predictions) numbers.push_back(entry.first);
+  return std::find(video.begin(), video.end(), 0) == video.end() ||
+         (numbers.size() > 1 && countsFromZero(numbers));
 }
 
 // Position of frame `index` in the frames folder; -1 when the folder does not hold it.

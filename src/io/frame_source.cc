@@ -61,6 +61,8 @@ class VideoSource : public FrameSource {
     SourceReport report;
     report.expected_frames = decoder_.expectedFrames();
     report.exact_count = decoder_.exactCount();
+    report.duration_seconds = decoder_.durationSeconds();
+    report.reached_seconds = decoder_.reachedSeconds();
     report.fps = decoder_.fps();
     report.decode_errors = decoder_.errors();
     report.last_error = decoder_.lastError();

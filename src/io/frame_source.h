@@ -18,6 +18,8 @@ namespace movseg {
 struct SourceReport {
   int expected_frames = -1;   // frames in total when known up front (folders, most files)
   bool exact_count = true;    // false: expected_frames is estimated from a duration
+  double duration_seconds = -1;  // that duration when the count is estimated, else -1
+  double reached_seconds = -1;   // the last frame's time from the start, -1 when unknown
   double fps = 0;             // the frame rate it says it runs at; 0 when it does not say
   int decode_errors = 0;      // errors the decoder reported so far
   std::string last_error;     // the last one, in one line

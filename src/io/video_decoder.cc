@@ -4,6 +4,7 @@
 #include <poll.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <climits>
 #include <cmath>
@@ -191,6 +192,7 @@ void VideoDecoder::open(const std::string& url) {
                                ? static_cast<double>(ff_->format->duration) / AV_TIME_BASE
                                : 0;
     expected_frames_ = clampedCount(std::round(seconds * fps_));
+    if (seconds > 0) duration_seconds_ = seconds;
   }
   const uint8_t* matrix = av_stream_get_side_data(stream, AV_PKT_DATA_DISPLAYMATRIX, nullptr);
   if (matrix != nullptr) rotation_ = av_display_rotation_get(reinterpret_cast<const int32_t*>(matrix));
@@ -205,6 +207,7 @@ bool VideoDecoder::read(cv::Mat* bgr) {
   for (;;) {
     const int r = avcodec_receive_frame(ff_->codec, ff_->frame);
     if (r == 0) {
+      noteTimestamp();
       if (ff_->frame->decode_error_flags != 0 || (ff_->frame->flags & AV_FRAME_FLAG_CORRUPT) != 0) {
         noteError("a frame decoded with errors");
       }
@@ -234,6 +237,15 @@ bool VideoDecoder::sendNextPacket() {
     if (sent < 0) noteError(sent);
     if (ours) return true;
   }
+}
+
+void VideoDecoder::noteTimestamp() {
+  const AVStream* stream = ff_->format->streams[ff_->stream];
+  const int64_t at = ff_->frame->best_effort_timestamp;
+  if (at == AV_NOPTS_VALUE) return;
+  const int64_t start = stream->start_time != AV_NOPTS_VALUE ? stream->start_time : 0;
+  reached_seconds_ =
+      std::max(reached_seconds_, static_cast<double>(at - start) * av_q2d(stream->time_base));
 }
 
 void VideoDecoder::convert(cv::Mat* bgr) {

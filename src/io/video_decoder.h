@@ -44,6 +44,11 @@ class VideoDecoder {
   int expectedFrames() const { return expected_frames_; }
   bool exactCount() const { return exact_count_; }
   double fps() const { return fps_; }
+  // Where the count is estimated, the stream's duration in seconds (else -1), and the time of
+  // the last frame read, from the stream's start (-1 before one, or without timestamps): a
+  // variable frame rate makes the estimate wrong, the time does not.
+  double durationSeconds() const { return exact_count_ ? -1 : duration_seconds_; }
+  double reachedSeconds() const { return reached_seconds_; }
 
   // Errors FFmpeg reported so far (failed reads and decodes, its error messages, frames it
   // marked corrupt), and the last one's text.
@@ -61,6 +66,7 @@ class VideoDecoder {
   void noteError(const std::string& text);
   void noteError(int code);
   bool sendNextPacket();
+  void noteTimestamp();  // of the frame just decoded, into reached_seconds_
   void convert(cv::Mat* bgr);
   void restartDeadline();
 
@@ -71,6 +77,7 @@ class VideoDecoder {
   int expected_frames_ = -1;
   bool exact_count_ = false;
   double fps_ = 0;
+  double duration_seconds_ = -1, reached_seconds_ = -1;
   double rotation_ = 0;  // degrees, counter-clockwise, from the stream's display matrix
   int errors_ = 0;
   std::string last_error_;

@@ -1,5 +1,6 @@
 #include "synth/depth_camera.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "synth/random.h"
@@ -125,7 +126,9 @@ SynthPinhole viewAt(const DepthMotion& motion, int t, cv::Size frame_size, cv::R
 
 }  // namespace
 
-double restFocalLength(cv::Size frame_size) { return 0.9 * frame_size.width; }
+double restFocalLength(cv::Size frame_size) {
+  return 0.9 * std::max(frame_size.width, frame_size.height);
+}
 
 std::vector<SynthPinhole> makeDepthCameraPath(SynthCamera camera, int frames, cv::Size frame_size,
                                               cv::RNG& rng) {

@@ -10,7 +10,8 @@
 
 namespace movseg {
 
-// The focal length at rest, in pixels: 0.9 x the frame width (a 58° horizontal field of view).
+// The focal length at rest, in pixels: 0.9 x the frame's longer side (a 58° field of view along
+// it). The width alone made a tall portrait frame see sideways (a 20:1 one over 170° high).
 double restFocalLength(cv::Size frame_size);
 
 // One view per frame. The camera starts level at 1.4–2 m above the ground, at x = z = 0 (the rest

@@ -175,6 +175,29 @@ TEST(EvalDataset, CdnetCountsTemporalRoiOnlyAndMatchesSegmentNumbering) {
   EXPECT_EQ(by_number.meanJ(), 1);
 }
 
+TEST(EvalDataset, ASubsampledSequenceMatchesSegmentNumbering) {
+  // Every third frame kept: frames and masks 00000, 00003, 00006, 00009. `movseg segment`
+  // writes 00000-00003 for them; its 00002 is frame 6. Positions 1 and 2 right, 3 wrong: J 2/3
+  // (by number, 00003 would be frame 3, and frames 6 and 9 missing).
+  test::TempDir dir;
+  writeDavisSequence(dir / "seq", {0, 3, 6, 9}, {0, 3, 6, 9});
+  for (int i = 0; i < 4; ++i) {
+    writeImage(dir / "pred", maskName(i), rectMask(kSize, i == 3 ? cv::Rect() : kSquare));
+  }
+  const GtSequence sequence = loadGroundTruth(dir / "seq", GtFormat::kAuto).at(0);
+  const SequenceScore score = scoreSequence(sequence, dir / "pred");
+  EXPECT_TRUE(score.matched_by_position);
+  ASSERT_EQ(score.counted().size(), 3u);
+  EXPECT_NEAR(score.meanJ(), 2.0 / 3, 1e-9);
+  EXPECT_EQ(score.missing, 0);
+
+  // Masks named by their frames' numbers match by number.
+  for (int i : {0, 3, 6, 9}) writeImage(dir / "by_number", maskName(i), rectMask(kSize, kSquare));
+  const SequenceScore by_number = scoreSequence(sequence, dir / "by_number");
+  EXPECT_FALSE(by_number.matched_by_position);
+  EXPECT_EQ(by_number.meanJ(), 1);
+}
+
 TEST(EvalDataset, FramesWithoutGroundTruthAreSkippedNotEmpty) {
   // Five frames, masks for 0, 2 and 4 only; the predictions are all empty.
   test::TempDir dir;

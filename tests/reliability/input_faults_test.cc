@@ -109,6 +109,22 @@ TEST(InputFaults, ATruncatedVideoIsReported) {
   }
 }
 
+// A variable frame rate (a pause in a phone or screen recording): 50 frames over 5 seconds at
+// an average of 25 per second. Its count, estimated from the duration, is 125; its timestamps
+// reach the end, so it is no truncated video (exit 1 before).
+TEST(InputFaults, AVariableFrameRateVideoIsNotTruncated) {
+  const test::TempDir dir;
+  for (const std::string name : {"v.mkv", "v.webm"}) {
+    ASSERT_TRUE(test::ffmpeg("-f lavfi -t 2 -i testsrc2=size=160x120:rate=25 -vf "
+                             "\"setpts='if(gte(N,25),PTS+3/TB,PTS)'\" -fps_mode vfr -pix_fmt yuv420p " +
+                             dir / name));
+    const test::CommandResult r =
+        test::runCli("segment " + dir / name + " -o " + dir / ("out-" + name) + " -q");
+    EXPECT_EQ(r.exit_code, 0) << name << ": " << r.output;
+    EXPECT_EQ(test::filesIn(dir / ("out-" + name)).size(), 51u) << name;  // and the manifest
+  }
+}
+
 // macOS leaves `._NAME` files beside a copied folder's files: not frames (one stopped the run).
 TEST(InputFaults, HiddenFilesAreNotFrames) {
   const test::TempDir dir;

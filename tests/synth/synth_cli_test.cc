@@ -109,7 +109,7 @@ TEST(SynthCli, BadOptionsFailWithOneLine) {
   const std::string out = dir / "clip";
   for (const std::string bad :
        {"--size 10x10", "--size abc", "--objects 0", "--objects 4", "--frames 0", "--camera tilt",
-        "--seed -1", "--object-speed 3-1", "--object-speed 0-2", "--object-speed 40",
+        "--seed -1", "--seed 18446744073709551616", "--seed 1x", "--object-speed 3-1", "--object-speed 0-2", "--object-speed 40",
         "--object-speed fast", "--object-speed -1-2", "--noise -1", "--illumination 0.6",
         "--scene cube", "--camera dolly", "--scene plane --camera forward",
         "--scene depth --camera tilt"}) {
