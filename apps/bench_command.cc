@@ -304,8 +304,12 @@ void runBench(const BenchOptions& options) {
   const StopOnSignal stop_on_signal;
   options.params.check();
   // What cannot be written fails now, not after the whole bench; none inside the dataset.
-  checkReportPaths({{"--json", options.json_file}, {"--html", options.html_file}}, {options.data});
+  const std::initializer_list<std::pair<const char*, std::string>> reports = {
+      {"--json", options.json_file}, {"--html", options.html_file}};
+  checkReportPaths(reports, {options.data, options.ignore});
   const std::vector<GtSequence> sequences = loadGroundTruth(options.data, GtFormat::kAuto);
+  refuseReportsInside(reports, sequenceFolders(sequences, ""));  // links out of DATA
+  requireFramesToScore(sequences);
   for (const GtSequence& s : sequences) {
     if (s.frames_dir.empty()) {
       throw std::runtime_error("sequence '" + s.name + "' has no frames folder to segment");

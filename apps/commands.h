@@ -11,6 +11,8 @@
 #include <CLI/CLI.hpp>
 #include <opencv2/core/types.hpp>
 
+#include "core/text.h"
+
 namespace movseg::cli {
 
 // Exit codes (README, docs/usage.md).
@@ -36,12 +38,6 @@ void interpretOptions(Interpret&& interpret) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
-}
-
-// `text` on one line, whatever it holds (a file name may contain a newline): errors are one line.
-inline std::string oneLine(std::string text) {
-  for (char& c : text) c = c == '\n' || c == '\r' ? ' ' : c;
-  return text;
 }
 
 // Refuses each of `options` of `command` given an empty value (`--json ''`, `-o ''`): an empty

@@ -39,7 +39,8 @@ std::string describeGroundTruth(const std::vector<GtSequence>& sequences) {
 }
 
 // A sequence without a counted frame has no score, and a mean over the others would pass for
-// the whole set's: fail, naming the first such sequence.
+// the whole set's: fail, naming the first such sequence. Its ground truth has frames to score
+// (requireFramesToScore()): their predictions are missing.
 void requireCountedFrames(const std::vector<GtSequence>& sequences,
                           const std::vector<SequenceScore>& scores, const std::string& pred) {
   std::vector<size_t> unscored;
@@ -47,15 +48,11 @@ void requireCountedFrames(const std::vector<GtSequence>& sequences,
     if (scores[i].counted().empty()) unscored.push_back(i);
   }
   if (unscored.empty()) return;
-  const SequenceScore& first = scores[unscored.front()];
   const std::string more =
       unscored.size() > 1 ? " (nor for " + std::to_string(unscored.size() - 1) + " more)" : "";
-  if (first.missing > 0) {
-    throw std::runtime_error("no predicted mask for sequence '" + first.name + "' in '" +
-                             predictionDir(sequences[unscored.front()], pred) + "'" + more);
-  }
-  throw std::runtime_error("sequence '" + first.name +
-                           "' has no ground-truth frame to score besides its first");
+  throw std::runtime_error("no predicted mask for sequence '" + scores[unscored.front()].name +
+                           "' in '" + predictionDir(sequences[unscored.front()], pred) + "'" +
+                           more);
 }
 
 // `movseg eval GT PRED` by mistake would score the ground truth against the predictions without
@@ -93,25 +90,40 @@ void writeReport(const EvalOptions& options, const std::vector<GtSequence>& sequ
                   runs);
 }
 
+// After SIGINT or SIGTERM (StopOnSignal), which the scoring heeds between sequences: nothing
+// more is written. Files written before it are complete.
+void throwIfStopped() {
+  if (!StopOnSignal::stopped()) return;
+  std::cerr << "movseg: interrupted; the files written so far are complete\n";
+  throw CLI::RuntimeError(kExitInterrupted);
+}
+
 void runEval(const EvalOptions& options) {
-  // Before the scoring rather than after it; none inside PRED or GT.
-  checkReportPaths(
-      {{"--json", options.json_file}, {"--csv", options.csv_file}, {"--html", options.html_file}},
-      {options.pred, options.gt});
+  const StopOnSignal stop_on_signal;
+  // Before the scoring rather than after it; none inside PRED or GT, nor inside a sequence's
+  // folders where they are links out of them.
+  const std::initializer_list<std::pair<const char*, std::string>> reports = {
+      {"--json", options.json_file}, {"--csv", options.csv_file}, {"--html", options.html_file}};
+  checkReportPaths(reports, {options.pred, options.gt});
   std::error_code error;
   if (!std::filesystem::is_directory(options.pred, error)) {
     throw std::runtime_error("prediction folder '" + options.pred + "' does not exist");
   }
   const std::vector<GtSequence> sequences =
       loadGroundTruth(options.gt, gtFormatNames().at(options.format));
+  refuseReportsInside(reports, sequenceFolders(sequences, options.pred));
   rejectSwappedArguments(options, sequences);
-  const std::vector<SequenceScore> scores = scoreDataset(sequences, options.pred);
+  requireFramesToScore(sequences);
+  const std::vector<SequenceScore> scores =
+      scoreDataset(sequences, options.pred, &StopOnSignal::stopped);
+  throwIfStopped();
   std::cout << "eval: " << describeGroundTruth(sequences) << " in '" << options.gt << "'\n"
             << formatScoreTable(scores);
   requireCountedFrames(sequences, scores, options.pred);
   if (!options.csv_file.empty()) writeTextAtomic(options.csv_file, scoresCsv(scores));
   if (!options.json_file.empty()) writeTextAtomic(options.json_file, scoresJson(scores));
   if (!options.html_file.empty()) writeReport(options, sequences, scores);
+  throwIfStopped();
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "io/atomic_write.h"
+#include "io/frame_source.h"
 #include "io/json_text.h"
 
 namespace movseg::cli {
@@ -22,7 +23,9 @@ extern const std::size_t kChartJsSize, kReportJsSize, kReportCssSize;
 namespace {
 
 constexpr int kWorstFrames = 4;
-constexpr int kThumbnailWidth = 160;
+// A thumbnail fits 160 x 320 pixels, its frame's shape kept: a mask 1000 times taller than
+// wide made one taller than JPEG can encode.
+constexpr int kThumbnailWidth = 160, kThumbnailHeight = 320;
 
 std::string asset(const unsigned char* bytes, std::size_t size) {
   return std::string(reinterpret_cast<const char*>(bytes), size);
@@ -46,7 +49,7 @@ std::string base64(const std::vector<uchar>& bytes) {
 
 std::string escaped(const std::string& text) {
   std::string html;
-  for (char c : text) {
+  for (char c : utf8Text(text)) {
     switch (c) {
       case '&': html += "&amp;"; break;
       case '<': html += "&lt;"; break;
@@ -63,7 +66,8 @@ cv::Mat backgroundOf(const GtSequence& sequence, int frame, cv::Size size) {
   const std::map<int, std::string> frames = numberedImages(sequence.frames_dir);
   const auto found = frames.find(frame);
   cv::Mat picture;
-  if (found != frames.end()) picture = cv::imread(found->second, cv::IMREAD_COLOR);
+  // A frame that cannot be decoded (cut short, a header beyond the limits) is no error here.
+  if (found != frames.end()) picture = decodeImage(found->second, cv::IMREAD_COLOR);
   if (picture.size() != size) picture = cv::Mat(size, CV_8UC3, cv::Scalar::all(96));
   return picture;
 }
@@ -76,7 +80,10 @@ Thumbnail thumbnail(const GtSequence& sequence, const FrameScore& score,
   cv::Mat truth = readGtMask(sequence, truth_frame, nullptr);
   cv::Mat predicted = readMask(prediction);
   // Drawn at the thumbnail's size, so that the outline stays visible.
-  const cv::Size size(kThumbnailWidth, std::max(1, truth.rows * kThumbnailWidth / truth.cols));
+  const double scale = std::min(static_cast<double>(kThumbnailWidth) / truth.cols,
+                                static_cast<double>(kThumbnailHeight) / truth.rows);
+  const cv::Size size(std::max(1, static_cast<int>(truth.cols * scale)),
+                      std::max(1, static_cast<int>(truth.rows * scale)));
   cv::Mat picture = backgroundOf(sequence, score.frame, truth.size());
   cv::resize(picture, picture, size, 0, 0, cv::INTER_AREA);
   cv::resize(truth, truth, size, 0, 0, cv::INTER_NEAREST);

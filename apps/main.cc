@@ -1,10 +1,13 @@
 // build/movseg: segment moving objects, make synthetic test video, evaluate and benchmark.
 #include <malloc.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <csignal>
 #include <cstdlib>
 #include <exception>
 #include <iostream>
+#include <stdexcept>
 
 #include <opencv2/core/utility.hpp>
 #include <opencv2/core/utils/logger.hpp>
@@ -28,7 +31,7 @@ void reportFailedWrites() {
 }
 
 int fail(int code, const std::exception& e) {
-  std::cerr << "movseg: error: " << movseg::cli::oneLine(e.what()) << std::endl;
+  std::cerr << "movseg: error: " << movseg::oneLine(e.what()) << std::endl;
   return code;
 }
 
@@ -42,6 +45,11 @@ void keepLargeBlocksInTheHeap() {
   mallopt(M_TRIM_THRESHOLD, 512 << 20);
 }
 
+bool standardOutputIsAPipe() {
+  struct stat status {};
+  return fstat(STDOUT_FILENO, &status) == 0 && S_ISFIFO(status.st_mode);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -53,7 +61,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "movseg " MOVSEG_VERSION);
   app.require_subcommand(1);
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
-    return "movseg: error: " + movseg::cli::oneLine(e.what()) + "\n";
+    return "movseg: error: " + movseg::oneLine(e.what()) + "\n";
   });
   movseg::cli::addSegmentCommand(app);
   movseg::cli::addSynthCommand(app);
@@ -73,6 +81,13 @@ int main(int argc, char** argv) {
     return fail(movseg::cli::kExitUsage, e);
   } catch (const std::exception& e) {
     return fail(movseg::cli::kExitRunFailed, e);
+  }
+  // The tables of eval and bench, segment's summary: a full disk or a file-size limit under
+  // them is a failed write like any other. A pipe whose reader left (`movseg eval ... | head`)
+  // is the reader's choice.
+  if (!std::cout.flush() && !standardOutputIsAPipe()) {
+    return fail(movseg::cli::kExitRunFailed,
+                std::runtime_error("cannot write to the standard output"));
   }
   return 0;
 }

@@ -107,6 +107,7 @@ void checkOutputPaths(const SegmentOptions& options) {
       {"-o", options.output_dir}, {"--stats", options.stats_file}, {"--overlay", options.overlay}};
   for (const auto& [option, path] : outputs) {
     refuseWritingIntoInput(option, path, options.input, input);
+    refuseWritingIntoInput(option, path, options.ignore, options.ignore);
   }
   refuseSharedOutputs({{"--stats", options.stats_file}, {"--overlay", options.overlay}});
   refuseOverwritingTheRun(options);
@@ -535,11 +536,16 @@ void refuseWritingIntoInput(const std::string& option, const std::string& path,
   }
 }
 
+void refuseReportsInside(std::initializer_list<std::pair<const char*, std::string>> reports,
+                         const std::vector<std::string>& folders) {
+  for (const auto& [option, path] : reports) {
+    for (const std::string& folder : folders) refuseWritingIntoInput(option, path, folder, folder);
+  }
+}
+
 void checkReportPaths(std::initializer_list<std::pair<const char*, std::string>> reports,
                       std::initializer_list<std::string> inputs) {
-  for (const auto& [option, path] : reports) {
-    for (const std::string& input : inputs) refuseWritingIntoInput(option, path, input, input);
-  }
+  refuseReportsInside(reports, inputs);
   refuseSharedOutputs(reports);
   for (const auto& [option, path] : reports) {
     if (!path.empty()) checkOutputFile(path);

@@ -90,6 +90,11 @@ void refuseWritingIntoInput(const std::string& option, const std::string& path,
 void checkReportPaths(std::initializer_list<std::pair<const char*, std::string>> reports,
                       std::initializer_list<std::string> inputs);
 
+// UsageError when a report (as above) lies in one of `folders` (or is one of those files): the
+// folders a dataset's sequences are read from (sequenceFolders()), checked once they are known.
+void refuseReportsInside(std::initializer_list<std::pair<const char*, std::string>> reports,
+                         const std::vector<std::string>& folders);
+
 // One run per element of `runs`, as runSegmentation does, `threads` runs at a time, each on one
 // thread; a run that fails ends alone. `ended` is called as each run ends, one call at a time.
 // After SIGINT or SIGTERM the runs in progress stop after their current frame and no run

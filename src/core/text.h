@@ -14,4 +14,11 @@ inline std::string lowercase(std::string text) {
   return text;
 }
 
+// `text` on one line, whatever it holds (a file name may contain a newline): errors and table
+// rows are one line.
+inline std::string oneLine(std::string text) {
+  for (char& c : text) c = c == '\n' || c == '\r' ? ' ' : c;
+  return text;
+}
+
 }  // namespace movseg

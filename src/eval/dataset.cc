@@ -173,8 +173,8 @@ GtSequence loadSequence(const std::string& folder, GtFormat format, bool in_data
   }
   if (holdsImages(folders.frames)) {
     sequence.frames_dir = folders.frames;
-    for (const std::string& path : listImages(folders.frames)) {
-      sequence.video_frames.push_back(frameNumber(path));
+    for (const auto& [number, path] : framesInOrder(folders.frames)) {
+      sequence.video_frames.push_back(number);
     }
   }
   sequence.first_frame =
@@ -253,24 +253,36 @@ int frameNumber(const std::string& path) {
                               return std::isdigit(c);
                             }).base();
   const std::string digits(digits_begin, stem.end());
-  if (digits.empty() || digits.size() > kMaxFrameDigits) {
+  if (digits.empty()) {
     throw std::runtime_error("cannot read a frame number from the name of '" + path +
                              "' (expected digits at the end, e.g. 00012.png)");
+  }
+  if (digits.size() > kMaxFrameDigits) {
+    throw std::runtime_error("the frame number of '" + path + "' has more than " +
+                             std::to_string(kMaxFrameDigits) + " digits (at most " +
+                             std::to_string(kMaxFrameDigits) + " are read)");
   }
   return std::stoi(digits);
 }
 
-std::map<int, std::string> numberedImages(const std::string& folder) {
-  std::map<int, std::string> images;
-  if (!isFolder(folder)) return images;
+std::vector<std::pair<int, std::string>> framesInOrder(const std::string& folder) {
+  std::vector<std::pair<int, std::string>> frames;
+  std::map<int, std::string> seen;
   for (const std::string& path : listImages(folder)) {
-    const auto [where, inserted] = images.emplace(frameNumber(path), path);
+    const auto [where, inserted] = seen.emplace(frameNumber(path), path);
     if (!inserted) {
       throw std::runtime_error("'" + where->second + "' and '" + path + "' are both frame " +
                                std::to_string(where->first));
     }
+    frames.emplace_back(where->first, path);
   }
-  return images;
+  return frames;
+}
+
+std::map<int, std::string> numberedImages(const std::string& folder) {
+  if (!isFolder(folder)) return {};
+  const std::vector<std::pair<int, std::string>> frames = framesInOrder(folder);
+  return {frames.begin(), frames.end()};
 }
 
 std::vector<GtSequence> loadGroundTruth(const std::string& path, GtFormat format) {
@@ -300,6 +312,31 @@ std::string predictionDir(const GtSequence& sequence, const std::string& pred_pa
   const std::string folder = sequence.in_dataset ? join(pred_path, sequence.name) : pred_path;
   const std::string masks = join(folder, "masks");
   return isFolder(masks) ? masks : folder;
+}
+
+void requireFramesToScore(const std::vector<GtSequence>& sequences) {
+  for (const GtSequence& sequence : sequences) {
+    const bool scored = std::any_of(sequence.frames.begin(), sequence.frames.end(),
+                                    [&](const GtFrame& f) { return f.index != sequence.first_frame; });
+    if (!scored) {
+      throw std::runtime_error("sequence '" + sequence.name +
+                               "' has no ground-truth frame to score besides its first");
+    }
+  }
+}
+
+std::vector<std::string> sequenceFolders(const std::vector<GtSequence>& sequences,
+                                         const std::string& pred_path) {
+  std::vector<std::string> folders;
+  for (const GtSequence& sequence : sequences) {
+    if (!sequence.frames_dir.empty()) folders.push_back(sequence.frames_dir);
+    // One folder holds a sequence's masks; loadGroundTruth() gives none without one.
+    folders.push_back(fs::path(sequence.frames.front().mask_path).parent_path().string());
+    if (pred_path.empty()) continue;
+    folders.push_back(sequence.in_dataset ? join(pred_path, sequence.name) : pred_path);
+    folders.push_back(predictionDir(sequence, pred_path));
+  }
+  return folders;
 }
 
 cv::Mat readMask(const std::string& path) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <limits>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -29,15 +30,18 @@ std::string gtFormatName(GtFormat format);
 
 // A file's frame number: the trailing digits of its name's stem, so that 00012.png, 12.png,
 // gt000012.png and bird_00012.png are all frame 12. Throws std::runtime_error when the stem
-// does not end in digits.
+// does not end in digits or in more than 9.
 int frameNumber(const std::string& path);
 
 // A folder's own name, also when given with a trailing slash or as ".": "data/blackswan/" ->
 // "blackswan".
 std::string folderName(const std::string& folder);
 
-// The images of `folder` by frame number; none when the folder does not exist. Throws
+// The images of `folder` (which exists) in name order, each with its frame number. Throws
 // std::runtime_error when a file has no frame number or two files have the same one.
+std::vector<std::pair<int, std::string>> framesInOrder(const std::string& folder);
+
+// The images of `folder` by frame number (framesInOrder()); none when the folder does not exist.
 std::map<int, std::string> numberedImages(const std::string& folder);
 
 struct GtFrame {
@@ -80,13 +84,25 @@ cv::Mat readGtMask(const GtSequence& sequence, const GtFrame& frame, cv::Mat* ig
 // in either case its masks/ subfolder when there is one.
 std::string predictionDir(const GtSequence& sequence, const std::string& pred_path);
 
+// Throws std::runtime_error naming the first sequence of `sequences` whose ground truth has no
+// frame but the video's first, which no score counts: a mean over the others would pass for
+// the whole set's.
+void requireFramesToScore(const std::vector<GtSequence>& sequences);
+
+// The folders the sequences are read from: their frames, their masks and, unless `pred_path`
+// is empty, their predictions (PRED/<name>/ and predictionDir()). A sequence of a dataset may be
+// a link to a folder elsewhere, which the dataset's own path does not contain.
+std::vector<std::string> sequenceFolders(const std::vector<GtSequence>& sequences,
+                                         const std::string& pred_path);
+
 // Scores the masks of `pred_dir` (non-zero = foreground) against the sequence, matched by frame
 // number. Ground-truth frames without a prediction are counted as missing (but the first frame,
 // which no mean counts); video frames without ground truth as skipped. `movseg segment` numbers
-// its masks from 00000 by position in the frames folder: when the frames are not numbered so and
-// pred_dir holds a frame 0 that the video does not have (CDnet's frames start at in000001), or
-// predictions 0, 1, 2, ... without a gap where the frames skip (a subsampled sequence), they are
-// matched to frames by that position instead, and the score says so. Throws std::runtime_error naming the file when a
+// its masks from 00000 by position in the frames folder: when the frames are not numbered so
+// (CDnet's start at in000001, a subsampled sequence's skip) and every prediction is a position
+// of the video but not every one a frame of it (a frame 0 the video does not have, 00001 where
+// it skips from 0 to 3), predictions are matched to frames by that position instead, and the
+// score says so. Throws std::runtime_error naming the file when a
 // mask cannot be read or a prediction's size differs from its ground truth's.
 SequenceScore scoreSequence(const GtSequence& sequence, const std::string& pred_dir);
 
@@ -95,9 +111,11 @@ SequenceScore scoreSequence(const GtSequence& sequence, const std::string& pred_
 std::map<int, std::string> matchPredictions(const GtSequence& sequence,
                                             const std::string& pred_dir);
 
-// scoreSequence() of every sequence with its predictionDir().
+// scoreSequence() of every sequence with its predictionDir(); only those scored before `stop`
+// (if given) first returns true, asked before each sequence.
 std::vector<SequenceScore> scoreDataset(const std::vector<GtSequence>& sequences,
-                                        const std::string& pred_path);
+                                        const std::string& pred_path,
+                                        const std::function<bool()>& stop = {});
 
 // `value` with `decimals` digits after the point; "-" for NaN (nothing to score).
 std::string formatFixed(double value, int decimals);

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/text.h"
 #include "io/json_text.h"
 
 namespace movseg {
@@ -32,7 +33,7 @@ std::string tableLine(const std::vector<std::string>& cells, size_t name_width) 
 }
 
 std::vector<std::string> tableCells(const ScoreSummary& row) {
-  return {row.name,
+  return {oneLine(row.name),
           std::to_string(row.frames),
           std::to_string(row.skipped),
           std::to_string(row.missing),

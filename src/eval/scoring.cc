@@ -8,28 +8,20 @@
 namespace movseg {
 namespace {
 
-// Whether `numbers` (in order) are 0, 1, 2, ... without a gap.
-template <typename Numbers>
-bool countsFromZero(const Numbers& numbers) {
-  int expected = 0;
-  for (const int number : numbers) {
-    if (number != expected++) return false;
-  }
-  return true;
-}
-
-// `movseg segment` numbers its masks by position from 00000. Where the frames folder is not
-// numbered so (CDnet's frames start at in000001; a subsampled sequence holds 00000, 00003, ...),
-// a frame 0 that the video does not have gives that numbering away, and so do predictions
-// numbered 0, 1, 2, ... without a gap: masks named by their frames' numbers would skip as the
-// frames do.
+// `movseg segment` numbers its masks by position from 00000. Where the frames' numbers are not
+// 0, 1, 2, ... (CDnet's start at in000001; a subsampled sequence holds 00000, 00003, ...),
+// predictions that are all positions of the video and not all frames of it give that
+// numbering away: a frame 0 the video does not have, 00001 where it skips from 0 to 3. Masks
+// named by their frames' numbers (CDnet's bin000001.png) are all frames of the video.
 bool numberedByPosition(const GtSequence& sequence, const std::map<int, std::string>& predictions) {
-  const std::vector<int>& video = sequence.video_frames;
-  if (predictions.count(0) == 0 || video.empty() || countsFromZero(video)) return false;
-  std::vector<int> numbers;
-  for (const auto& entry : predictions) numbers.push_back(entry.first);
-  return std::find(video.begin(), video.end(), 0) == video.end() ||
-         (numbers.size() > 1 && countsFromZero(numbers));
+  const std::set<int> video(sequence.video_frames.begin(), sequence.video_frames.end());
+  const int frames = static_cast<int>(video.size());
+  const bool numbered_from_zero = !video.empty() && *video.begin() == 0 && *video.rbegin() == frames - 1;
+  if (video.empty() || numbered_from_zero || predictions.empty()) return false;
+  const auto isPosition = [frames](const auto& entry) { return entry.first < frames; };
+  const auto isFrame = [&video](const auto& entry) { return video.count(entry.first) > 0; };
+  return std::all_of(predictions.begin(), predictions.end(), isPosition) &&
+         !std::all_of(predictions.begin(), predictions.end(), isFrame);
 }
 
 // Position of frame `index` in the frames folder; -1 when the folder does not hold it.
@@ -114,9 +106,11 @@ SequenceScore scoreSequence(const GtSequence& sequence, const std::string& pred_
 }
 
 std::vector<SequenceScore> scoreDataset(const std::vector<GtSequence>& sequences,
-                                        const std::string& pred_path) {
+                                        const std::string& pred_path,
+                                        const std::function<bool()>& stop) {
   std::vector<SequenceScore> scores;
   for (const GtSequence& sequence : sequences) {
+    if (stop && stop()) break;
     scores.push_back(scoreSequence(sequence, predictionDir(sequence, pred_path)));
   }
   return scores;

@@ -169,6 +169,39 @@ TEST(BenchCli, ASequenceThatFailsLeavesNoScratchFolder) {
   EXPECT_FALSE(std::filesystem::exists(scratch)) << scratch;
 }
 
+// Inputs the reports must not replace (exit 0 before, the file replaced by the JSON): the
+// --ignore image, and the frames of a sequence linked into DATA from elsewhere.
+TEST(BenchCli, NoReportOverAnInput) {
+  const test::TempDir dir;
+  ASSERT_EQ(test::runCli("synth -o " + dir / "store/s" + " --frames 3 --size 96x72").exit_code, 0);
+  std::filesystem::create_directories(dir / "data");
+  std::filesystem::create_directory_symlink(dir / "store/s", dir / "data/s");
+  ASSERT_TRUE(cv::imwrite(dir / "ignore.png", cv::Mat(72, 96, CV_8U, cv::Scalar(0))));
+  for (const std::string& target : {dir / "ignore.png", dir / "store/s/frames/00001.png",
+                                    dir / "data/s/masks/00001.png"}) {
+    for (const char* option : {"--json", "--html"}) {
+      const test::CommandResult bench =
+          test::runCli("bench " + dir / "data" + " --methods diff --ignore " + dir / "ignore.png" +
+                       " " + option + " " + target);
+      test::expectOneLineError(bench, "would write into the input", test::kExitUsage);
+    }
+  }
+  EXPECT_FALSE(cv::imread(dir / "ignore.png").empty());
+  EXPECT_FALSE(cv::imread(dir / "store/s/frames/00001.png").empty());
+}
+
+// A sequence whose ground truth is its first frame only has nothing to score: refused before
+// any run (a "nan" row and a "nan" mean before).
+TEST(BenchCli, ASequenceWithNothingToScoreIsRefused) {
+  const test::TempDir dir;
+  ASSERT_EQ(test::runCli("synth -o " + dir / "data/s" + " --frames 3 --size 96x72").exit_code, 0);
+  std::filesystem::remove(dir / "data/s/masks/00001.png");
+  std::filesystem::remove(dir / "data/s/masks/00002.png");
+  test::expectOneLineError(test::runCli("bench " + dir / "data" + " --methods diff"),
+                           "has no ground-truth frame to score besides its first",
+                           test::kExitRunFailed);
+}
+
 TEST(DemoCli, SegmentsTheSyntheticClipAndPrintsItsAccuracy) {
   const test::TempDir dir;
   const test::CommandResult demo = test::runCli("demo -o " + dir / "demo" + " --frames 20");

@@ -51,6 +51,7 @@ TEST(EvalDataset, FrameNumbersAreTrailingDigits) {
   EXPECT_EQ(frameNumber("gt000012.png"), 12);
   EXPECT_EQ(frameNumber("birdfall2_00012.png"), 12);
   EXPECT_THROW(frameNumber("mask.png"), std::runtime_error);
+  expectError([] { frameNumber("1700000000123.png"); }, "has more than 9 digits");
 }
 
 TEST(EvalDataset, TwoFilesOfOneFrameAreAnError) {
@@ -196,6 +197,37 @@ TEST(EvalDataset, ASubsampledSequenceMatchesSegmentNumbering) {
   const SequenceScore by_number = scoreSequence(sequence, dir / "by_number");
   EXPECT_FALSE(by_number.matched_by_position);
   EXPECT_EQ(by_number.meanJ(), 1);
+
+  // One of segment's masks missing (00002, frame 6): still by position, frame 6 missing.
+  std::filesystem::remove(dir / ("pred/" + maskName(2)));
+  const SequenceScore gap = scoreSequence(sequence, dir / "pred");
+  EXPECT_TRUE(gap.matched_by_position);
+  EXPECT_EQ(gap.missing, 1);
+  EXPECT_NEAR(gap.meanJ(), 1.0 / 2, 1e-9);  // frame 3 right, frame 9 wrong
+}
+
+// Frames named without padding (0.png ... 11.png) sort as 0, 1, 10, 11, 2, ...: their numbers
+// are 0-11 all the same, so masks named like them match by number (the position in name order
+// is not the number).
+TEST(EvalDataset, UnpaddedFrameNamesMatchByNumber) {
+  test::TempDir dir;
+  for (int i = 0; i < 12; ++i) {
+    const cv::Rect square(i % 5, 0, 4, 4);  // each frame's own
+    writeImage(dir / "seq/frames", std::to_string(i) + ".png", rectMask(kSize, {}));
+    writeImage(dir / "seq/masks", std::to_string(i) + ".png", rectMask(kSize, square));
+    writeImage(dir / "pred", std::to_string(i) + ".png", rectMask(kSize, square));
+  }
+  const SequenceScore score =
+      scoreSequence(loadGroundTruth(dir / "seq", GtFormat::kAuto).at(0), dir / "pred");
+  EXPECT_FALSE(score.matched_by_position);
+  EXPECT_EQ(score.meanJ(), 1);
+}
+
+TEST(EvalDataset, TwoFilesOfOneFrameInTheFramesFolderAreAnError) {
+  test::TempDir dir;
+  writeDavisSequence(dir / "seq", {0, 1, 2}, {0, 1, 2});
+  writeImage(dir / "seq/frames", "00002.jpg", rectMask(kSize, {}));
+  expectError([&] { loadGroundTruth(dir / "seq", GtFormat::kAuto); }, "are both frame 2");
 }
 
 TEST(EvalDataset, FramesWithoutGroundTruthAreSkippedNotEmpty) {

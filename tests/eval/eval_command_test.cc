@@ -177,5 +177,85 @@ TEST(EvalCli, ResizedPredictionIsAnError) {
   EXPECT_NE(run.output.find("00002.png' is 20x10"), std::string::npos) << run.output;
 }
 
+// A dataset made of links to sequences kept elsewhere (a subset of a larger set): a report
+// must not land in a linked sequence's masks, frames or predictions, which the dataset folder's
+// own path does not contain (exit 0 before, the mask replaced by the CSV).
+TEST(EvalCli, NoReportInsideALinkedSequence) {
+  test::TempDir dir;
+  for (int i = 0; i < 2; ++i) {
+    const std::string file = "0000" + std::to_string(i) + ".png";
+    writeImage(dir / "store/seq/frames", file, rectMask(kSize, {}));
+    writeImage(dir / "store/seq/masks", file, rectMask(kSize, kSquare));
+    writeImage(dir / "store/pred", file, rectMask(kSize, kSquare));
+  }
+  std::filesystem::create_directories(dir / "gt");
+  std::filesystem::create_directories(dir / "pred");
+  std::filesystem::create_directory_symlink(dir / "store/seq", dir / "gt/seq");
+  std::filesystem::create_directory_symlink(dir / "store/pred", dir / "pred/seq");
+  const std::string mask = dir / "store/seq/masks/00001.png";
+  const std::string before = readFile(mask);
+  for (const std::string target : {"gt/seq/masks/00001.png", "store/seq/masks/00001.png",
+                                   "store/seq/frames/00001.png", "store/pred/00001.png"}) {
+    const test::CommandResult run = test::runCli("eval '" + (dir / "pred") + "' '" + (dir / "gt") +
+                                                 "' --csv '" + (dir / target) + "'");
+    EXPECT_EQ(run.exit_code, test::kExitUsage) << target << ": " << run.output;
+    EXPECT_NE(run.output.find("would write into the input"), std::string::npos) << run.output;
+  }
+  EXPECT_EQ(readFile(mask), before);
+  EXPECT_EQ(test::runCli("eval '" + (dir / "pred") + "' '" + (dir / "gt") + "' --csv '" +
+                         (dir / "s.csv") + "'")
+                .exit_code,
+            0);
+}
+
+// Masks 1000 times taller than wide: the report's thumbnails fit JPEG's limits (the report
+// failed, "Maximum supported image dimension is 65500 pixels"); a frame that cannot be decoded
+// (a PNG header claiming 200000x200000) is drawn as a grey canvas, not an error.
+TEST(EvalCli, TheReportTakesTallMasksAndUndecodableFrames) {
+  test::TempDir dir;
+  const cv::Size tall(2, 1000);
+  for (int i = 0; i < 3; ++i) {
+    const std::string file = "0000" + std::to_string(i) + ".png";
+    writeImage(dir / "gt/seq/frames", file, rectMask(tall, {}));
+    writeImage(dir / "gt/seq/masks", file, rectMask(tall, {0, 0, 2, 400}));
+    writeImage(dir / "pred/seq", file, rectMask(tall, {0, 100, 2, 400}));
+  }
+  // The PNG's IHDR width and height (bytes 16-23), then its CRC is wrong too: undecodable.
+  std::fstream frame(dir / "gt/seq/frames/00002.png", std::ios::in | std::ios::out | std::ios::binary);
+  frame.seekp(16);
+  for (const char byte : {0, 3, 13, 64, 0, 3, 13, 64}) frame.put(byte);
+  frame.close();
+  const test::CommandResult run = test::runCli("eval '" + (dir / "pred") + "' '" + (dir / "gt") +
+                                               "' --html '" + (dir / "r.html") + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(run.output.find("OpenCV"), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find("libpng"), std::string::npos) << run.output;
+  EXPECT_NE(readFile(dir / "r.html").find("data:image/jpeg;base64,"), std::string::npos);
+}
+
+// The table on a full disk: a failed write, exit 1 (exit 0 before). (Its message goes to the
+// full disk too: runCli sends stderr where stdout goes.)
+TEST(EvalCli, AFailedWriteOfTheTableFails) {
+  test::TempDir dir;
+  writePlainPair(dir);
+  const std::string command = "eval '" + (dir / "pred") + "' '" + (dir / "gt") + "'";
+  EXPECT_EQ(test::runCli(command).exit_code, 0);
+  EXPECT_EQ(test::runCli(command + " > /dev/full").exit_code, 1);
+}
+
+// A sequence named with a newline keeps its table row on one line.
+TEST(EvalCli, ANameWithANewlineIsOneRow) {
+  test::TempDir dir;
+  for (int i = 0; i < 2; ++i) {
+    const std::string file = "0000" + std::to_string(i) + ".png";
+    writeImage(dir / "gt/a\nb/masks", file, rectMask(kSize, kSquare));
+    writeImage(dir / "pred/a\nb", file, rectMask(kSize, kSquare));
+  }
+  const test::CommandResult run =
+      test::runCli("eval '" + (dir / "pred") + "' '" + (dir / "gt") + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("\na b "), std::string::npos) << run.output;
+}
+
 }  // namespace
 }  // namespace movseg

@@ -155,12 +155,18 @@ TEST_F(OutputFaults, OutputsInsideTheInputAreRefused) {
       {"segment " + frames() + " -o " + dir_ / "out" + " --stats ''", "empty"},
       {"bench " + (*clip_ / "clip") + " --methods diff --json " + frames() + "/t.json", "--json"},
       {"bench " + (*clip_ / "clip") + " --methods diff --html " + frames() + "/t.html", "--html"},
+      // The image of --ignore is an input too.
+      {"segment " + frames() + " -o " + dir_ / "out" + " --ignore " + dir_ / "ignore.png" +
+           " --stats " + dir_ / "ignore.png",
+       "--stats"},
   };
+  fs::copy_file(frames() + "/00001.png", dir_ / "ignore.png");
   for (const auto& [arguments, named] : cases) {
     SCOPED_TRACE(arguments);
     test::expectOneLineError(test::runCli(arguments), named, test::kExitUsage);
   }
   EXPECT_EQ(fs::file_size(video), size);
+  EXPECT_FALSE(cv::imread(dir_ / "ignore.png").empty());
   EXPECT_EQ(test::filesIn(frames()).size(), 12u);
   EXPECT_FALSE(fs::exists(dir_ / "out/00000.png"));
 }
