@@ -303,12 +303,12 @@ void runBench(const BenchOptions& options) {
   // One for the whole bench, from its start: a signal before or between runs is not lost.
   const StopOnSignal stop_on_signal;
   options.params.check();
-  // What cannot be written fails now, not after the whole bench; none inside the dataset.
-  const std::initializer_list<std::pair<const char*, std::string>> reports = {
-      {"--json", options.json_file}, {"--html", options.html_file}};
-  checkReportPaths(reports, {options.data, options.ignore});
   const std::vector<GtSequence> sequences = loadGroundTruth(options.data, GtFormat::kAuto);
-  refuseReportsInside(reports, sequenceFolders(sequences, ""));  // links out of DATA
+  // What cannot be written fails now, not after the whole bench; none inside the dataset or the
+  // sequences' folders, also where they are links out of it.
+  std::vector<std::string> inputs = sequenceFolders(sequences, "");
+  inputs.insert(inputs.end(), {options.data, options.ignore});
+  checkReportPaths({{"--json", options.json_file}, {"--html", options.html_file}}, inputs);
   requireFramesToScore(sequences);
   for (const GtSequence& s : sequences) {
     if (s.frames_dir.empty()) {

@@ -100,18 +100,19 @@ void throwIfStopped() {
 
 void runEval(const EvalOptions& options) {
   const StopOnSignal stop_on_signal;
-  // Before the scoring rather than after it; none inside PRED or GT, nor inside a sequence's
-  // folders where they are links out of them.
-  const std::initializer_list<std::pair<const char*, std::string>> reports = {
-      {"--json", options.json_file}, {"--csv", options.csv_file}, {"--html", options.html_file}};
-  checkReportPaths(reports, {options.pred, options.gt});
   std::error_code error;
   if (!std::filesystem::is_directory(options.pred, error)) {
     throw std::runtime_error("prediction folder '" + options.pred + "' does not exist");
   }
   const std::vector<GtSequence> sequences =
       loadGroundTruth(options.gt, gtFormatNames().at(options.format));
-  refuseReportsInside(reports, sequenceFolders(sequences, options.pred));
+  // Before the scoring rather than after it; none inside PRED or GT, nor inside a sequence's
+  // folders where they are links out of them.
+  std::vector<std::string> inputs = sequenceFolders(sequences, options.pred);
+  inputs.insert(inputs.end(), {options.pred, options.gt});
+  checkReportPaths(
+      {{"--json", options.json_file}, {"--csv", options.csv_file}, {"--html", options.html_file}},
+      inputs);
   rejectSwappedArguments(options, sequences);
   requireFramesToScore(sequences);
   const std::vector<SequenceScore> scores =

@@ -20,8 +20,9 @@ namespace movseg::cli {
 inline const CLI::Validator kSeed(
     [](std::string& input) -> std::string {
       std::uint64_t value = 0;
+      const char* begin = input.data() + (input.rfind('+', 0) == 0 ? 1 : 0);  // "+5" is 5
       const char* end = input.data() + input.size();
-      const auto [at, error] = std::from_chars(input.data(), end, value);
+      const auto [at, error] = std::from_chars(begin, end, value);
       return error == std::errc() && at == end ? "" : "must be an integer in [0, 2^64 - 1]";
     },
     "0..2^64-1");

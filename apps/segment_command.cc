@@ -49,11 +49,11 @@ void segmentMany(const SegmentOptions& shared, const std::vector<std::string>& i
       ++failed;
       std::cerr << "movseg: error: " << oneLine("'" + runs[i].input + "': " + failure) << std::endl;
     } else if (!shared.quiet && !outcome.summary.interrupted) {
-      std::cout << "segment: " << runs[i].input << ": " << describeSummary(outcome.summary)
-                << std::endl;
+      std::cout << "segment: " << oneLine(runs[i].input) << ": "
+                << describeSummary(outcome.summary) << std::endl;
     }
   });
-  throwIfInterrupted(frames, interrupted);
+  throwIfInterrupted(frames, interrupted || StopOnSignal::stopped());
   if (!shared.quiet) {
     std::cout << "segment: " << runs.size() - failed << " of " << runs.size() << " inputs done in "
               << shared.output_dir << std::endl;
@@ -121,6 +121,9 @@ void addSegmentCommand(CLI::App& app) {
     // Whole milliseconds, at least one for any time given: 0 ms means "no limit".
     options->timeout = std::chrono::milliseconds(
         *timeout > 0 ? std::max(1LL, std::llround(*timeout * 1000)) : 0LL);
+    // From here to the end: a signal after the last run ended still stops the command (exit
+    // 130), rather than killing it as the default handlers, restored with the runs', would.
+    const StopOnSignal stop_on_signal;
     if (several) {
       segmentMany(*options, *inputs, *threads);
     } else {

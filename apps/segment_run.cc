@@ -63,6 +63,14 @@ bool isVideoPath(const std::string& path) {
 // Refuses --stats or --overlay where the run writes its own files: the output folder (overlay
 // pictures there would replace the masks), its manifest or one of its masks, and, with --debug,
 // its `debug/` folder (the pictures would replace them, or the file stand in their way).
+// A name the run writes in its folder: a mask, the manifest, or either's temporary name
+// (temporaryPath(): "movseg-run.json.part", "00001.part.png").
+bool isTheRunsFileName(std::string name) {
+  const size_t mark = name.find(".part");
+  if (mark != std::string::npos) name.erase(mark, 5);
+  return name == kManifestName || isFrameFileName(name);
+}
+
 void refuseOverwritingTheRun(const SegmentOptions& options) {
   const std::string debug = (fs::path(options.output_dir) / "debug").string();
   for (const auto& [option, path] : {std::pair<const char*, std::string>{"--stats", options.stats_file},
@@ -77,7 +85,7 @@ void refuseOverwritingTheRun(const SegmentOptions& options) {
     const bool in_output_folder =
         isSamePlace(folder.empty() ? "." : folder.string(), options.output_dir);
     if (isSamePlace(path, options.output_dir) ||
-        (in_output_folder && (name == kManifestName || isFrameFileName(name)))) {
+        (in_output_folder && isTheRunsFileName(name))) {
       throw UsageError(oneLine(std::string(option) + " '" + path +
                                "' would overwrite the masks or the manifest in -o '" +
                                options.output_dir + "'"));
@@ -85,33 +93,51 @@ void refuseOverwritingTheRun(const SegmentOptions& options) {
   }
 }
 
-// Refuses an input inside the folders of -o that a run replaces (`overlay/`, `debug/`: with
-// --overwrite the user's frames there were deleted).
-void refuseInputInTheRunsFolders(const SegmentOptions& options, const std::string& input) {
-  if (input.empty()) return;
+// Refuses an input (`input`, on disk `input_path`) inside the folders of -o that a run replaces
+// (`overlay/`, `debug/`: with --overwrite the user's frames there were deleted).
+void refuseInputInTheRunsFolders(const SegmentOptions& options, const std::string& input,
+                                 const std::string& input_path) {
+  if (input_path.empty()) return;
   for (const char* owned : {"overlay", "debug"}) {
     const std::string folder = (fs::path(options.output_dir) / owned).string();
-    if (isSameOrInside(input, folder)) {
-      throw UsageError("INPUT '" + options.input + "' lies in '" + folder +
+    if (isSameOrInside(input_path, folder)) {
+      throw UsageError("INPUT '" + input + "' lies in '" + folder +
                        "', which the run's own pictures replace");
     }
   }
 }
 
-// Refuses outputs that would overwrite the input, the run's own files or one another, and empty
-// or unknown output names.
-void checkOutputPaths(const SegmentOptions& options) {
+// Refuses a sequence folder (frames/ in it) as the output folder: the masks at its top would
+// be read as its frames next time (a folder of images is read before its frames/).
+void refuseSequenceFolderAsOutput(const SegmentOptions& options) {
+  std::error_code error;
+  if (fs::is_directory(fs::path(options.output_dir) / "frames", error) &&
+      fs::is_directory(options.output_dir, error)) {
+    throw UsageError("-o '" + options.output_dir +
+                     "' holds a sequence's frames/: its masks would be read as the frames");
+  }
+}
+
+// Refuses outputs that would overwrite an input (the run's own and `other_inputs`, those of the
+// same command), the run's own files or one another, and empty or unknown output names.
+void checkOutputPaths(const SegmentOptions& options,
+                      const std::vector<std::string>& other_inputs = {}) {
   if (options.output_dir.empty()) throw UsageError("the output folder (-o) is empty");
-  const std::string input = inputPath(options.input);
+  std::vector<std::string> inputs = other_inputs;
+  inputs.push_back(options.input);
   const std::pair<const char*, std::string> outputs[] = {
       {"-o", options.output_dir}, {"--stats", options.stats_file}, {"--overlay", options.overlay}};
+  for (const std::string& input : inputs) {
+    const std::string input_path = inputPath(input);
+    for (const auto& [option, path] : outputs) refuseWritingIntoInput(option, path, input, input_path);
+    refuseInputInTheRunsFolders(options, input, input_path);
+  }
   for (const auto& [option, path] : outputs) {
-    refuseWritingIntoInput(option, path, options.input, input);
     refuseWritingIntoInput(option, path, options.ignore, options.ignore);
   }
   refuseSharedOutputs({{"--stats", options.stats_file}, {"--overlay", options.overlay}});
   refuseOverwritingTheRun(options);
-  refuseInputInTheRunsFolders(options, input);
+  refuseSequenceFolderAsOutput(options);
   const fs::path overlay(options.overlay);
   std::error_code error;
   if (!options.overlay.empty() && overlay.has_extension() && !isVideoPath(options.overlay) &&
@@ -536,16 +562,35 @@ void refuseWritingIntoInput(const std::string& option, const std::string& path,
   }
 }
 
-void refuseReportsInside(std::initializer_list<std::pair<const char*, std::string>> reports,
-                         const std::vector<std::string>& folders) {
-  for (const auto& [option, path] : reports) {
-    for (const std::string& folder : folders) refuseWritingIntoInput(option, path, folder, folder);
+namespace {
+
+// UsageError when the existing file `path` is one of the files below `folder` under another
+// name: a dataset linked file by file (`cp -rs`) holds links to masks and frames kept elsewhere.
+void refuseReplacingAnInputFile(const std::string& option, const std::string& path,
+                                const std::string& folder) {
+  std::error_code error;
+  if (!fs::exists(path, error) || !fs::is_directory(folder, error)) return;
+  for (fs::recursive_directory_iterator entry(folder, fs::directory_options::skip_permission_denied,
+                                              error), end;
+       !error && entry != end; entry.increment(error)) {
+    std::error_code same_error;
+    if (fs::equivalent(entry->path(), path, same_error)) {
+      throw UsageError(option + " '" + path + "' would write into the input '" +
+                       entry->path().string() + "'");
+    }
   }
 }
 
+}  // namespace
+
 void checkReportPaths(std::initializer_list<std::pair<const char*, std::string>> reports,
-                      std::initializer_list<std::string> inputs) {
-  refuseReportsInside(reports, inputs);
+                      const std::vector<std::string>& inputs) {
+  for (const auto& [option, path] : reports) {
+    for (const std::string& input : inputs) {
+      refuseWritingIntoInput(option, path, input, input);
+      if (!path.empty()) refuseReplacingAnInputFile(option, path, input);
+    }
+  }
   refuseSharedOutputs(reports);
   for (const auto& [option, path] : reports) {
     if (!path.empty()) checkOutputFile(path);
@@ -580,7 +625,11 @@ bool endsByTime(const SourceReport& source) {
 
 bool SegmentSummary::truncated() const {
   if (interrupted || reached_max_frames) return false;
-  if (endsByTime(source)) return source.reached_seconds + 1 < source.duration_seconds;
+  // The duration counts the last frame's own time on screen, a frame interval.
+  if (endsByTime(source)) {
+    const double last_frame = source.fps > 0 ? 1 / source.fps : 0;
+    return source.reached_seconds + last_frame + 1 < source.duration_seconds;
+  }
   if (source.expected_frames < 0) return false;
   const int tolerance = source.exact_count ? 0 : static_cast<int>(std::ceil(source.fps));
   return frames + tolerance < source.expected_frames;
@@ -713,6 +762,7 @@ std::string inputName(const std::string& input) {
 std::vector<SegmentOptions> perInputRuns(const SegmentOptions& shared,
                                          const std::vector<std::string>& inputs) {
   if (shared.show) throw UsageError("--show takes one input");
+  if (shared.output_dir.empty()) throw UsageError("the output folder (-o) is empty");
   for (const auto& [option, name] : {std::pair<const char*, std::string>{"--stats", shared.stats_file},
                                      {"--overlay", shared.overlay}}) {
     if (fs::path(name).has_parent_path() || name == "." || name == "..") {
@@ -742,6 +792,9 @@ std::vector<SegmentOptions> perInputRuns(const SegmentOptions& shared,
     run.overlay = inFolder(shared.overlay);
     runs.push_back(std::move(run));
   }
+  // Before any run: one run's outputs may not land in another's input, and a bad name is a
+  // usage error of the command, not a failure of each run.
+  for (const SegmentOptions& run : runs) checkOutputPaths(run, inputs);
   return runs;
 }
 

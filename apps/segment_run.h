@@ -85,15 +85,12 @@ void refuseWritingIntoInput(const std::string& option, const std::string& path,
                             const std::string& input, const std::string& input_path);
 
 // The report files of `eval` and `bench` (an option and its path; empty paths are not checked),
-// before any work: none inside one of the folders `inputs`, where it could replace a mask or a
-// frame (UsageError), no two in one file (UsageError), each one writable (std::runtime_error).
+// before any work: none inside one of `inputs` (files, or folders such as those a dataset's
+// sequences are read from, sequenceFolders()) nor the same file as one in them through a link,
+// where it could replace a mask or a frame (UsageError); no two in one file (UsageError); each
+// one writable (std::runtime_error), tried only once the others are known to be no input.
 void checkReportPaths(std::initializer_list<std::pair<const char*, std::string>> reports,
-                      std::initializer_list<std::string> inputs);
-
-// UsageError when a report (as above) lies in one of `folders` (or is one of those files): the
-// folders a dataset's sequences are read from (sequenceFolders()), checked once they are known.
-void refuseReportsInside(std::initializer_list<std::pair<const char*, std::string>> reports,
-                         const std::vector<std::string>& folders);
+                      const std::vector<std::string>& inputs);
 
 // One run per element of `runs`, as runSegmentation does, `threads` runs at a time, each on one
 // thread; a run that fails ends alone. `ended` is called as each run ends, one call at a time.

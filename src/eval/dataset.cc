@@ -155,6 +155,7 @@ Folders foldersOf(const std::string& folder, GtFormat format) {
 GtSequence loadSequence(const std::string& folder, GtFormat format, bool in_dataset) {
   GtSequence sequence;
   sequence.name = sequenceName(folder, format);
+  sequence.folder = folder;
   sequence.format = format;
   sequence.in_dataset = in_dataset;
   const std::string roi_file = join(folder, "temporalROI.txt");
@@ -329,6 +330,7 @@ std::vector<std::string> sequenceFolders(const std::vector<GtSequence>& sequence
                                          const std::string& pred_path) {
   std::vector<std::string> folders;
   for (const GtSequence& sequence : sequences) {
+    folders.push_back(sequence.folder);
     if (!sequence.frames_dir.empty()) folders.push_back(sequence.frames_dir);
     // One folder holds a sequence's masks; loadGroundTruth() gives none without one.
     folders.push_back(fs::path(sequence.frames.front().mask_path).parent_path().string());

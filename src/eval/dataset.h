@@ -51,6 +51,7 @@ struct GtFrame {
 
 struct GtSequence {
   std::string name;
+  std::string folder;           // the sequence's own (a plain layout's: its masks')
   std::string frames_dir;       // the video's frames; empty when the layout has none (plain)
   std::vector<GtFrame> frames;  // by index; CDnet: only those within the temporal ROI
   GtFormat format = GtFormat::kPlain;
@@ -89,9 +90,9 @@ std::string predictionDir(const GtSequence& sequence, const std::string& pred_pa
 // the whole set's.
 void requireFramesToScore(const std::vector<GtSequence>& sequences);
 
-// The folders the sequences are read from: their frames, their masks and, unless `pred_path`
-// is empty, their predictions (PRED/<name>/ and predictionDir()). A sequence of a dataset may be
-// a link to a folder elsewhere, which the dataset's own path does not contain.
+// The folders the sequences are read from: their own, their frames', their masks' and, unless
+// `pred_path` is empty, their predictions' (PRED/<name>/ and predictionDir()). A sequence of a
+// dataset may be a link to a folder elsewhere, which the dataset's own path does not contain.
 std::vector<std::string> sequenceFolders(const std::vector<GtSequence>& sequences,
                                          const std::string& pred_path);
 

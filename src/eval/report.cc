@@ -55,7 +55,7 @@ std::vector<ScoreSummary> summaries(const std::vector<SequenceScore>& scores) {
 std::string positionNote(const std::vector<SequenceScore>& scores) {
   std::string names;
   for (const SequenceScore& score : scores) {
-    if (score.matched_by_position) names += (names.empty() ? "" : ", ") + score.name;
+    if (score.matched_by_position) names += (names.empty() ? "" : ", ") + oneLine(score.name);
   }
   if (names.empty()) return "";
   return "Predictions numbered from 00000 matched to frames by their position in the frames "

@@ -316,7 +316,52 @@ TEST(SegmentCli, SeveralInputsRefusedBeforeAnyRun) {
                            "into the input", test::kExitUsage);
   test::expectOneLineError(test::runCli("segment " + a + out + " --threads 0"), "--threads",
                            test::kExitUsage);
+  // Checked for every input before any run, as for one: exit 2 (exit 1 before, one line per
+  // input, or exit 0 with the outputs written at the top of ./a).
+  test::expectOneLineError(test::runCli("segment " + a + " " + b + out + " --overlay x.gif"),
+                           "--overlay", test::kExitUsage);
+  test::expectOneLineError(test::runCli("segment " + a + " " + b + out + " --stats 00003.png"),
+                           "--stats", test::kExitUsage);
+  test::expectOneLineError(test::runCli("segment " + a + " " + b + " -o ''"), "-o",
+                           test::kExitUsage);
   EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+// One input's outputs may not land in another input: its overlay folder, its stats file, its
+// debug pictures written over the other's frames or video (exit 0 before, the input replaced).
+TEST(SegmentCli, OneInputsOutputsStayOutOfTheOthers) {
+  const test::TempDir dir;
+  const std::string a = dir / "a";
+  ASSERT_EQ(test::runCli("synth -o " + a + " --frames 2 --size 96x72").exit_code, 0);
+  for (const char* inside : {"out/a/viz", "out/a/debug/mask", "out/a/st.png"}) {
+    fs::create_directories((dir / inside).c_str());
+    fs::copy(a + "/frames", dir / inside, fs::copy_options::recursive);
+  }
+  const std::string out = " -o " + dir / "out";
+  test::expectOneLineError(
+      test::runCli("segment " + a + " " + dir / "out/a/viz" + out + " --overlay viz"),
+      "would write into the input", test::kExitUsage);
+  test::expectOneLineError(
+      test::runCli("segment " + a + " " + dir / "out/a/debug/mask" + out + " --debug"),
+      "which the run's own pictures replace", test::kExitUsage);
+  test::expectOneLineError(
+      test::runCli("segment " + a + " " + dir / "out/a/st.png" + out + " --stats st.png"),
+      "would write into the input", test::kExitUsage);
+  EXPECT_EQ(test::filesIn(dir / "out/a/viz").size(), 2u);
+}
+
+// A sequence folder (frames/ in it) as the output folder: its masks would be read as its frames
+// next time (accepted before; the next run segmented the masks). And a stats file named as the
+// manifest's temporary file, which the manifest's write replaced.
+TEST(SegmentCli, TheRunsFolderIsNoSequenceAndItsNamesAreItsOwn) {
+  const test::TempDir dir;
+  const std::string a = dir / "a";
+  ASSERT_EQ(test::runCli("synth -o " + a + " --frames 2 --size 96x72").exit_code, 0);
+  test::expectOneLineError(test::runCli("segment " + a + " -o " + a), "holds a sequence's frames/",
+                           test::kExitUsage);
+  test::expectOneLineError(test::runCli("segment " + a + " -o " + dir / "out" + " --stats " +
+                                        dir / "out/movseg-run.json.part"),
+                           "would overwrite the masks or the manifest", test::kExitUsage);
 }
 
 }  // namespace

@@ -45,6 +45,17 @@ void writePlainPair(const test::TempDir& dir) {
   writeImage(dir / "pred", "00002.png", rectMask(kSize, kSquare));
 }
 
+// A sequence of two frames in `sequence` (frames/ empty, masks/ the square) and predictions
+// that are its truth in `predictions`.
+void writeSequenceAndItsTruth(const std::string& sequence, const std::string& predictions) {
+  for (int i = 0; i < 2; ++i) {
+    const std::string file = "0000" + std::to_string(i) + ".png";
+    writeImage(sequence + "/frames", file, rectMask(kSize, {}));
+    writeImage(sequence + "/masks", file, rectMask(kSize, kSquare));
+    writeImage(predictions, file, rectMask(kSize, kSquare));
+  }
+}
+
 TEST(EvalCli, PrintsTableAndWritesCsvAndJson) {
   test::TempDir dir;
   writePlainPair(dir);
@@ -94,12 +105,7 @@ TEST(EvalCli, FormatIsTakenAsGivenOrRefused) {
 TEST(EvalCli, DatasetLayoutScoresEverySequence) {
   test::TempDir dir;
   for (const std::string name : {"one", "two"}) {
-    for (int i = 0; i < 2; ++i) {
-      const std::string file = "0000" + std::to_string(i) + ".png";
-      writeImage(dir / ("gt/" + name + "/frames"), file, rectMask(kSize, {}));
-      writeImage(dir / ("gt/" + name + "/masks"), file, rectMask(kSize, kSquare));
-      writeImage(dir / ("pred/" + name), file, rectMask(kSize, kSquare));
-    }
+    writeSequenceAndItsTruth(dir / ("gt/" + name), dir / ("pred/" + name));
   }
   const test::CommandResult run = test::runCli("eval '" + (dir / "pred") + "' '" + (dir / "gt") +
                                                "' --json '" + (dir / "s.json") + "'");
@@ -148,12 +154,7 @@ TEST(EvalCli, BadGroundTruthIsAOneLineError) {
 // `eval GT PRED`: the ground truth (frames + masks) given as PRED, the predictions as GT.
 TEST(EvalCli, SwappedArgumentsAreAnError) {
   test::TempDir dir;
-  for (int i = 0; i < 2; ++i) {
-    const std::string file = "0000" + std::to_string(i) + ".png";
-    writeImage(dir / "seq/frames", file, rectMask(kSize, {}));
-    writeImage(dir / "seq/masks", file, rectMask(kSize, kSquare));
-    writeImage(dir / "out", file, rectMask(kSize, kSquare));
-  }
+  writeSequenceAndItsTruth(dir / "seq", dir / "out");
   const test::CommandResult right =
       test::runCli("eval '" + (dir / "out") + "' '" + (dir / "seq") + "'");
   EXPECT_EQ(right.exit_code, 0) << right.output;
@@ -182,12 +183,7 @@ TEST(EvalCli, ResizedPredictionIsAnError) {
 // own path does not contain (exit 0 before, the mask replaced by the CSV).
 TEST(EvalCli, NoReportInsideALinkedSequence) {
   test::TempDir dir;
-  for (int i = 0; i < 2; ++i) {
-    const std::string file = "0000" + std::to_string(i) + ".png";
-    writeImage(dir / "store/seq/frames", file, rectMask(kSize, {}));
-    writeImage(dir / "store/seq/masks", file, rectMask(kSize, kSquare));
-    writeImage(dir / "store/pred", file, rectMask(kSize, kSquare));
-  }
+  writeSequenceAndItsTruth(dir / "store/seq", dir / "store/pred");
   std::filesystem::create_directories(dir / "gt");
   std::filesystem::create_directories(dir / "pred");
   std::filesystem::create_directory_symlink(dir / "store/seq", dir / "gt/seq");
@@ -201,7 +197,19 @@ TEST(EvalCli, NoReportInsideALinkedSequence) {
     EXPECT_EQ(run.exit_code, test::kExitUsage) << target << ": " << run.output;
     EXPECT_NE(run.output.find("would write into the input"), std::string::npos) << run.output;
   }
+  // Linked file by file (`cp -rs`): the folders are real, each mask a link into the store.
+  for (const char* folder : {"frames", "masks"}) {
+    std::filesystem::create_directories(dir / ("files/seq/" + std::string(folder)));
+    for (int i = 0; i < 2; ++i) {
+      const std::string file = std::string(folder) + "/0000" + std::to_string(i) + ".png";
+      std::filesystem::create_symlink(dir / ("store/seq/" + file), dir / ("files/seq/" + file));
+    }
+  }
+  const test::CommandResult by_file = test::runCli(
+      "eval '" + (dir / "pred") + "' '" + (dir / "files") + "' --json '" + mask + "'");
+  EXPECT_EQ(by_file.exit_code, test::kExitUsage) << by_file.output;
   EXPECT_EQ(readFile(mask), before);
+  EXPECT_FALSE(std::filesystem::exists(mask + ".part"));  // not even tried
   EXPECT_EQ(test::runCli("eval '" + (dir / "pred") + "' '" + (dir / "gt") + "' --csv '" +
                          (dir / "s.csv") + "'")
                 .exit_code,

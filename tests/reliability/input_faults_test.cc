@@ -123,6 +123,12 @@ TEST(InputFaults, AVariableFrameRateVideoIsNotTruncated) {
     EXPECT_EQ(r.exit_code, 0) << name << ": " << r.output;
     EXPECT_EQ(test::filesIn(dir / ("out-" + name)).size(), 51u) << name;  // and the manifest
   }
+  // Under a frame a second: the duration (10 s) counts the last frame's 2 s on screen.
+  ASSERT_TRUE(test::ffmpeg("-f lavfi -i testsrc2=size=96x72:rate=0.5 -t 10 -pix_fmt yuv420p " +
+                           dir / "slow.mkv"));
+  const test::CommandResult slow =
+      test::runCli("segment " + dir / "slow.mkv" + " -o " + dir / "out-slow" + " -q");
+  EXPECT_EQ(slow.exit_code, 0) << slow.output;
 }
 
 // macOS leaves `._NAME` files beside a copied folder's files: not frames (one stopped the run).

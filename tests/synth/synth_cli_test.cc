@@ -119,6 +119,8 @@ TEST(SynthCli, BadOptionsFailWithOneLine) {
     EXPECT_EQ(result.output.find('\n'), result.output.size() - 1) << bad << ": " << result.output;
     EXPECT_FALSE(std::filesystem::exists(out)) << bad << ": wrote files anyway";
   }
+  EXPECT_EQ(runCli("synth -o " + dir / "plus" + " --frames 2 --size 64x48 --seed +5").exit_code,
+            0);  // as CLI11 reads every other number
   const auto no_output = runCli("synth --frames 3");
   EXPECT_EQ(no_output.exit_code, test::kExitUsage);
   EXPECT_EQ(no_output.output.rfind("movseg: error: ", 0), 0u) << no_output.output;
