@@ -60,9 +60,6 @@ bool isVideoPath(const std::string& path) {
 
 // ---- paths ------------------------------------------------------------------------------------
 
-// Refuses --stats or --overlay where the run writes its own files: the output folder (overlay
-// pictures there would replace the masks), its manifest or one of its masks, and, with --debug,
-// its `debug/` folder (the pictures would replace them, or the file stand in their way).
 // A name the run writes in its folder: a mask, the manifest, or either's temporary name
 // (temporaryPath(): "movseg-run.json.part", "00001.part.png").
 bool isTheRunsFileName(std::string name) {
@@ -71,6 +68,9 @@ bool isTheRunsFileName(std::string name) {
   return name == kManifestName || isFrameFileName(name);
 }
 
+// Refuses --stats or --overlay where the run writes its own files: the output folder (overlay
+// pictures there would replace the masks), its manifest or one of its masks, and, with --debug,
+// its `debug/` folder (the pictures would replace them, or the file stand in their way).
 void refuseOverwritingTheRun(const SegmentOptions& options) {
   const std::string debug = (fs::path(options.output_dir) / "debug").string();
   for (const auto& [option, path] : {std::pair<const char*, std::string>{"--stats", options.stats_file},
