@@ -1,11 +1,11 @@
 // movseg demo: what `make run` runs. Writes a synthetic moving-camera clip with exact ground
 // truth, segments it (the default method unless --method says otherwise), scores the masks and
 // prints the result.
+#include <cerrno>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <cerrno>
-#include <cstdio>
 #include <stdexcept>
 
 #include <sys/stat.h>

@@ -63,8 +63,8 @@ bool isVideoPath(const std::string& path) {
 // A name the run writes in its folder: a mask, the manifest, or either's temporary name
 // (temporaryPath(): "movseg-run.json.part", "00001.part.png").
 bool isTheRunsFileName(std::string name) {
-  const size_t mark = name.find(".part");
-  if (mark != std::string::npos) name.erase(mark, 5);
+  const size_t mark = name.find(kTemporaryMark);
+  if (mark != std::string::npos) name.erase(mark, sizeof kTemporaryMark - 1);
   return name == kManifestName || isFrameFileName(name);
 }
 
@@ -805,14 +805,16 @@ std::string describeInputProblems(const SegmentSummary& summary) {
   if (source.decode_errors > 0) {
     add(std::to_string(source.decode_errors) + " decode errors (last: " + source.last_error + ")");
   }
-  if (summary.truncated() && endsByTime(source)) {
-    char seconds[96];
-    std::snprintf(seconds, sizeof seconds, "frames up to %.1f s of %.1f s", source.reached_seconds,
-                  source.duration_seconds);
-    add(std::string(seconds) + ": the video is truncated");
-  } else if (summary.truncated()) {
-    add(std::to_string(summary.frames) + " of " + (source.exact_count ? "" : "about ") +
-        std::to_string(source.expected_frames) + " frames: the video is truncated");
+  if (summary.truncated()) {
+    char reached[96];
+    if (endsByTime(source)) {
+      std::snprintf(reached, sizeof reached, "frames up to %.1f s of %.1f s",
+                    source.reached_seconds, source.duration_seconds);
+    } else {
+      std::snprintf(reached, sizeof reached, "%d of %s%d frames", summary.frames,
+                    source.exact_count ? "" : "about ", source.expected_frames);
+    }
+    add(std::string(reached) + ": the video is truncated");
   }
   if (source.timed_out) add("no frame within the timeout: the stream stalled");
   return text;

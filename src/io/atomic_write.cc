@@ -120,13 +120,13 @@ int writeAndClose(int fd, const char* data, size_t size) {
 
 std::string temporaryPath(const std::string& path, bool keep_extension) {
   constexpr size_t kMaxName = 255;  // NAME_MAX on Linux's file systems
-  constexpr char kMark[] = ".part";
   const fs::path p(path);
   const std::string extension = keep_extension ? p.extension().string() : "";
   std::string stem = keep_extension ? p.stem().string() : p.filename().string();
-  const size_t room = kMaxName - (sizeof kMark - 1) - std::min(extension.size(), kMaxName / 2);
+  const size_t room =
+      kMaxName - (sizeof kTemporaryMark - 1) - std::min(extension.size(), kMaxName / 2);
   if (stem.size() > room) stem.resize(room);
-  return (p.parent_path() / (stem + kMark + extension)).string();
+  return (p.parent_path() / (stem + kTemporaryMark + extension)).string();
 }
 
 namespace {

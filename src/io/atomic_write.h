@@ -32,6 +32,9 @@ void makeOutputFolder(const std::string& path);
 // 00001.png, ..., more digits from 100000 on.
 std::string frameFileName(int index);
 
+// What marks a temporary name (temporaryPath()).
+constexpr char kTemporaryMark[] = ".part";
+
 // Where a file is written before it is renamed to `path`: beside it, PATH.part, or NAME.part.EXT
 // with `keep_extension` (a video writer picks its container by the extension). A name near the
 // 255 bytes a file name may have is cut first, so that the temporary one is legal too.
