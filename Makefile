@@ -74,6 +74,9 @@ test-tsan: deps
 	@echo "test-tsan: ThreadSanitizer build in $(TSAN_DIR)"
 	@cmake -S . -B $(TSAN_DIR) $(subst address$(comma)undefined,thread,$(SANITIZE_FLAGS)) >/dev/null
 	@cmake --build $(TSAN_DIR) -j $(JOBS) --target movseg_thread_tests
+	@cd $(TSAN_DIR) && set -f && for pattern in $(subst :, ,$(TSAN_TESTS)); do \
+	  tests/movseg_thread_tests --gtest_filter="$$pattern" --gtest_list_tests | grep -q '^  ' || \
+	  { echo "test-tsan: no test matches $$pattern"; exit 1; }; done
 	@cd $(TSAN_DIR) && TSAN_OPTIONS=halt_on_error=1:suppressions=$(CURDIR)/tests/tsan.supp \
 	  tests/movseg_thread_tests --gtest_filter='$(TSAN_TESTS)'
 
@@ -85,12 +88,13 @@ test-fuzz: deps
 	@cmake --build $(FUZZ_DIR) -j $(JOBS) --target segmenter_fuzz readers_fuzz video_fuzz
 	@bash fuzz/run.sh $(FUZZ_DIR) $(FUZZ_SECONDS)
 
-# Micro-benchmarks (synthetic and DAVIS clips, MOG2 beside), then a whole `segment` run against
-# a Python cv2 MOG2 run (skipped without the DAVIS data).
+# Micro-benchmarks (synthetic and DAVIS clips, MOG2 beside), the Python call's overhead, then a
+# whole `segment` run against a Python cv2 MOG2 run (skipped without the DAVIS data).
 bench: deps
 	@$(MAKE) --no-print-directory build
 	@$(BUILD_DIR)/bench/movseg_bench --benchmark_min_time=0.5 --benchmark_repetitions=5 \
 	  --benchmark_report_aggregates_only=true
+	@PYTHONPATH=$(BUILD_DIR)/python /usr/bin/python3 bench/python_overhead.py
 	@/usr/bin/python3 bench/whole_run.py --movseg $(BUILD_DIR)/movseg --skip-without-data
 
 # 20,000 frames through one Segmenter; fails when resident memory grows by more than 4 MiB. Then

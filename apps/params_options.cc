@@ -64,13 +64,19 @@ void addParamsOptions(CLI::App* command, Params* params, const std::set<std::str
   command
       ->add_option_function<std::vector<std::string>>(
           "--set",
-          [params](const std::vector<std::string>& items) {
+          [params, except](const std::vector<std::string>& items) {
             for (const std::string& item : items) {
               const size_t eq = item.find('=');
               if (eq == std::string::npos) {
                 throw CLI::ValidationError("--set: expected name=value, got '" + item + "'");
               }
-              set(params, item.substr(0, eq), item.substr(eq + 1));
+              const std::string name = item.substr(0, eq);
+              // A field left out is the command's own (bench's method: its --methods).
+              if (except.count(name) > 0) {
+                throw CLI::ValidationError("--set: '" + name +
+                                           "' is set by this command's own option, not --set");
+              }
+              set(params, name, item.substr(eq + 1));
             }
           },
           "Set any parameter by its name: --set name=value (repeatable)")

@@ -27,9 +27,9 @@ inline const CLI::Validator kSeed(
     },
     "0..2^64-1");
 
-// Adds an option per field of Params except those named in `except`, and --set. Values are
-// parsed and range-checked by movseg::setParam as they are read, so a bad value is refused by
-// name before anything runs.
+// Adds an option per field of Params except those named in `except`, and --set, which refuses
+// those too. Values are parsed and range-checked by movseg::setParam as they are read, so a bad
+// value is refused by name before anything runs.
 void addParamsOptions(CLI::App* command, Params* params, const std::set<std::string>& except = {});
 
 }  // namespace movseg::cli

@@ -10,7 +10,8 @@ import movseg  # built for one interpreter: /usr/bin/python3 unless the build ch
 video = cv2.VideoCapture(sys.argv[1])
 if not video.isOpened():
     sys.exit(f"cannot open {sys.argv[1]}")
-# Any field of include/movseg/params.def by name; static_camera=True suits a fixed camera.
+# Any field of include/movseg/params.def by name (lambda is lambda_); static_camera=True suits a
+# fixed camera.
 segmenter = movseg.Segmenter(movseg.Params(static_camera=False))
 index = 0
 while True:

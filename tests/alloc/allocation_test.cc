@@ -78,6 +78,16 @@ TEST(Allocations, DenseFlowKeepsItsBuffersBetweenFrames) {
   for (size_t t = 4; t < frames.size(); ++t) flow.next(frames[t], &flows[t % 2]);
   std::printf("dense flow: %.1f allocations per frame\n", counter.count() / 4.0);
   EXPECT_EQ(counter.count(), 0);
+  // And the flow was computed: the last pair's is that of a flow started afresh on the same
+  // frames, and the camera's pan shows in it.
+  const cv::Mat& last = flows[(frames.size() - 1) % 2];
+  DenseFlow fresh(Params().flow_finest_scale);
+  cv::Mat expected;
+  for (const cv::Mat& frame : frames) fresh.next(frame, &expected);
+  ASSERT_EQ(last.type(), CV_32FC2);
+  EXPECT_EQ(last.size(), frames[0].size());
+  EXPECT_EQ(cv::norm(last, expected, cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::norm(last, cv::NORM_L1) / last.total(), 0.5);  // px per pixel
 }
 
 struct Counted {

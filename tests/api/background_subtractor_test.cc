@@ -115,6 +115,18 @@ TEST(BackgroundSubtractor, ThreadsSharingOneTakeTurns) {
   }
   for (std::thread& thread : threads) thread.join();
   EXPECT_EQ(done.load(), 100);  // a still frame: nothing moves, every time
+  // And the state they shared is whole: the background is the frame, and a patch moving over
+  // it next is found.
+  cv::Mat background;
+  shared->getBackgroundImage(background);
+  EXPECT_EQ(cv::norm(background, frame, cv::NORM_INF), 0);
+  cv::Mat mask;
+  for (const int step : {6, 12, 18}) {
+    cv::Mat moved = frame.clone();
+    frame(cv::Rect(30, 30, 60, 60)).copyTo(moved(cv::Rect(30 + step, 30, 60, 60)));
+    shared->apply(moved, mask);
+  }
+  EXPECT_GT(cv::countNonZero(mask), 1800);  // half the patch
 }
 
 }  // namespace

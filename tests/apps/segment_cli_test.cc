@@ -59,6 +59,10 @@ TEST(SegmentCli, WritesOneMaskPerFrameAndStatsLines) {
     EXPECT_EQ(mask.size(), cv::Size(320, 240));
     EXPECT_EQ(cv::countNonZero((mask != 0) & (mask != 255)), 0);
     EXPECT_TRUE(fs::exists(dir / "out/overlay/" + name));
+    if (i < 2) continue;  // the movers are found from the second pair on
+    const cv::Mat truth = cv::imread(dir / "clip/masks/" + name, cv::IMREAD_GRAYSCALE) > 127;
+    const double iou = cv::countNonZero(truth & mask) / static_cast<double>(cv::countNonZero(truth | mask));
+    EXPECT_GT(iou, 0.8) << name;
   }
   std::ifstream stats(dir / "stats.jsonl");
   std::string line;

@@ -9,7 +9,6 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "core/quantile.h"
 #include "flow/dense_flow.h"
 #include "flow/flow_camera.h"
 #include "test_support.h"
@@ -162,10 +161,13 @@ cv::Mat openCvConfirmation(const cv::Mat& grey, const cv::Mat& previous, const c
     cv::absdiff(grey, warped, warped);
     cv::blur(warped, errors[i], cv::Size(5, 5));
   }
-  LevelHistogram histogram{};
-  for (auto it = errors[1].begin<uchar>(); it != errors[1].end<uchar>(); ++it) ++histogram[*it];
+  // The median as the sorted middle element (index n / 2), not by the pipeline's histogram.
+  std::vector<uchar> camera_errors(errors[1].begin<uchar>(), errors[1].end<uchar>());
+  std::nth_element(camera_errors.begin(), camera_errors.begin() + camera_errors.size() / 2,
+                   camera_errors.end());
+  const int middle = camera_errors[camera_errors.size() / 2];
   const float margin =
-      static_cast<float>(params.photometric_margin) * static_cast<float>(std::max(median(histogram), 1));
+      static_cast<float>(params.photometric_margin) * static_cast<float>(std::max(middle, 1));
   cv::Mat confirmation(grey.size(), CV_32F);
   for (int y = 0; y < grey.rows; ++y) {
     for (int x = 0; x < grey.cols; ++x) {

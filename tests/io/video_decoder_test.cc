@@ -105,7 +105,9 @@ TEST(VideoDecoder, TruncationShowsAsFewerFramesThanExpected) {
   fs::resize_file(path, fs::file_size(path) / 2);
   VideoDecoder decoder(path, {});
   EXPECT_EQ(decoder.expectedFrames(), 50);
-  EXPECT_LT(allFrames(decoder).size(), 40u);
+  const size_t frames = allFrames(decoder).size();
+  EXPECT_LT(frames, 40u);
+  EXPECT_GE(frames, 10u);  // what the first half holds is decoded (measured: 10)
 }
 
 TEST(VideoDecoder, DamageIsCountedAsDecodeErrors) {
@@ -127,6 +129,8 @@ TEST(VideoDecoder, OpeningASilentServerGivesUpAtTheTimeout) {
   const test::LocalServer server;
   const auto start = std::chrono::steady_clock::now();
   EXPECT_THROW(VideoDecoder(server.url(), {milliseconds(500), nullptr}), std::runtime_error);
+  // At the timeout: not at once (another failure), not long after.
+  EXPECT_GE(std::chrono::steady_clock::now() - start, milliseconds(450));
   EXPECT_LT(std::chrono::steady_clock::now() - start, milliseconds(3000));
 }
 

@@ -120,6 +120,9 @@ TEST(Motion, IsDeterministicForAFixedSeed) {
   const MotionEstimate b = estimate(pair, Params());
   EXPECT_EQ(cv::norm(cv::Mat(a.model), cv::Mat(b.model), cv::NORM_INF), 0.0);
   EXPECT_EQ(a.background, b.background);
+  // The same fit twice, and a fit of the camera (not an identity fallback returned twice).
+  EXPECT_FALSE(a.fallback);
+  EXPECT_LT(cornerError(a.model, spec.camera, spec.size), 0.5);
 }
 
 TEST(Motion, TexturelessPairFallsBackToWarmModel) {

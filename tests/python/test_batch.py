@@ -4,6 +4,7 @@ import csv
 import json
 import os
 import shutil
+import signal
 import socket
 import subprocess
 import sys
@@ -132,7 +133,9 @@ def test_bad_arguments_are_refused_before_any_input_runs(inputs, tmp_path, optio
     assert not (tmp_path / "out").exists()
 
 
-def test_an_interrupted_run_keeps_what_finished_and_says_what_did_not(inputs, tmp_path):
+# SIGTERM as a cluster's job manager sends it, SIGINT as Ctrl-C does (README).
+@pytest.mark.parametrize("stop", [signal.SIGTERM, signal.SIGINT], ids=["SIGTERM", "SIGINT"])
+def test_an_interrupted_run_keeps_what_finished_and_says_what_did_not(inputs, tmp_path, stop):
     listed = tmp_path / "inputs.txt"
     listed.write_text("".join(f"{inputs / 'walk' / 'frames'}\n" if i == 0 else
                               f"{tmp_path / f'copy{i}'}\n" for i in range(8)))
@@ -143,7 +146,7 @@ def test_an_interrupted_run_keeps_what_finished_and_says_what_did_not(inputs, tm
                             "--workers", "1"], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                            text=True)
     first = run.stdout.readline()  # the first input's line: the cluster runs
-    run.terminate()  # SIGTERM, as a cluster's job manager sends
+    run.send_signal(stop)
     rest, errors = run.communicate(timeout=120)
     assert first.startswith("batch: [1/8]") and run.returncode == 130, first + rest + errors
     assert "Traceback" not in errors and "(interrupted)" in rest

@@ -21,18 +21,27 @@ namespace {
 // regression-float64-frame: cv::patchNaNs takes CV_32F only, so 64-bit frames threw
 // cv::Exception out of process().
 TEST(FuzzRegressions, SixtyFourBitFloatFramesWithNanAreAccepted) {
-  const test::FramePair pair = test::makePair(test::PairSpec());
-  Segmenter as_float, as_double;
+  test::PairSpec spec;
+  spec.object_fraction = 0.15;  // a mover, for masks that say something
+  const test::FramePair pair = test::makePair(spec);
+  Segmenter as_float, as_double, as_zero;
+  cv::Mat zeroed_mask;
   for (const cv::Mat& frame : {pair.prev, pair.cur}) {
-    cv::Mat f32, f64;
+    cv::Mat f32, f64, zeroed;
     frame.convertTo(f32, CV_32FC3, 1.0 / 255.0);
+    f32.copyTo(zeroed);
+    zeroed(cv::Rect(0, 0, 10, 10)).setTo(0);
     f32(cv::Rect(0, 0, 10, 10)).setTo(std::numeric_limits<float>::quiet_NaN());
     f32.convertTo(f64, CV_64FC3);
     const Result a = as_float.process(f32);
     const Result b = as_double.process(f64);
     test::expectValidResult(b, frame.size());
     EXPECT_EQ(cv::countNonZero(a.mask != b.mask), 0);
+    // NaN pixels read as 0 (README): the masks of the frame with 0 there.
+    zeroed_mask = as_zero.process(zeroed).mask;
+    EXPECT_EQ(cv::countNonZero(a.mask != zeroed_mask), 0);
   }
+  EXPECT_GT(cv::countNonZero(zeroed_mask), 0);  // masks that say something
 }
 
 // regression-feature-rounds-off-edge: with the segmentation scale below the alignment scale,

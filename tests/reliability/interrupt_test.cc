@@ -47,6 +47,23 @@ void stopOnceWritten(pid_t pid, const std::string& file, int signal,
   EXPECT_EQ(WEXITSTATUS(status), 130);
 }
 
+// Waits until the process `pid` catches `signal` (its handler installed: SigCgt in
+// /proc/<pid>/status), for a command that writes nothing midway to show how far it got.
+bool waitForHandler(pid_t pid, int signal, std::chrono::seconds limit) {
+  const auto end = std::chrono::steady_clock::now() + limit;
+  while (std::chrono::steady_clock::now() < end) {
+    std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+    std::string line;
+    while (std::getline(status, line)) {
+      if (line.rfind("SigCgt:", 0) != 0) continue;
+      const unsigned long long caught = std::stoull(line.substr(7), nullptr, 16);
+      if ((caught >> (signal - 1)) & 1) return true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return false;
+}
+
 std::string textOf(const std::string& path) {
   std::ifstream in(path);
   std::ostringstream text;
@@ -165,6 +182,32 @@ TEST_F(InterruptBench, StopsWithoutATableAndRemovesItsScratchFolder) {
   EXPECT_NE(log.find("movseg: interrupted"), std::string::npos) << log;
   EXPECT_FALSE(fs::exists(scratch));
   EXPECT_FALSE(fs::exists(dir / "bench.json"));
+}
+
+// eval heeds a signal between sequences (README, "Bad input"): of 40 sequences it scores the
+// one it is on, then stops with one line, exit 130 and no report.
+class InterruptEval : public Interrupt {};
+
+TEST_F(InterruptEval, StopsBetweenSequencesWithoutAReport) {
+  test::TempDir dir;
+  const std::string data = dir / "data";
+  fs::create_directories(data);
+  for (int i = 0; i < 40; ++i) {
+    fs::create_directory_symlink(*clip_ / "clip", data + "/s" + std::to_string(i));
+  }
+  const pid_t pid = test::startCli({"eval", data, data, "--json", dir / "eval.json"},
+                                   dir / "log.txt");
+  ASSERT_GT(pid, 0);
+  const bool handled = waitForHandler(pid, SIGINT, std::chrono::seconds(60));
+  kill(pid, SIGINT);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(handled);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  EXPECT_EQ(textOf(dir / "log.txt"),
+            "movseg: interrupted; the files written so far are complete\n");
+  EXPECT_FALSE(fs::exists(dir / "eval.json"));
 }
 
 // demo stops as segment does, without scoring the frames it did not segment.
