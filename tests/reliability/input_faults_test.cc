@@ -146,6 +146,15 @@ TEST(InputFaults, HiddenFilesAreNotFrames) {
             (std::vector<std::string>{"00000.png", "00001.png", "00002.png", "movseg-run.json"}));
 }
 
+// A number is a camera index (README, "Command line"): one that no camera has fails in one
+// line, and no output is left.
+TEST(InputFaults, ACameraThatIsNotThereFailsInOneLine) {
+  const test::TempDir dir;
+  test::expectOneLineError(test::runCli("segment 99 -o " + dir / "out"), "cannot open camera 99",
+                           test::kExitRunFailed);
+  EXPECT_FALSE(fs::exists(dir / "out/00000.png"));
+}
+
 TEST(InputFaults, ASilentServerFailsAtTheTimeout) {
   const test::TempDir dir;
   const test::LocalServer server;

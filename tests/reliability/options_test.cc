@@ -68,6 +68,7 @@ TEST(Options, EveryParameterIsSetByNameOrByItsOption) {
   test::TempDir dir;
   ASSERT_EQ(test::runCli("synth -o " + (dir / "clip") + " --frames 3 --size 64x48").exit_code, 0);
   std::string by_set, by_option;
+  std::string bench_by_set, bench_by_option;  // bench all but the method: its --methods give it
   const Params defaults;
   Params expected;
   for (const FieldInfo& field : paramFields()) {
@@ -75,10 +76,15 @@ TEST(Options, EveryParameterIsSetByNameOrByItsOption) {
     setParam(&expected, field.name, value);
     ASSERT_NE(toText(paramValue(expected, field.name)), toText(paramValue(defaults, field.name)))
         << field.name;
-    by_set += " --set " + field.name + "=" + value;
+    const std::string set = " --set " + field.name + "=" + value;
     std::string option = field.name;
     for (char& c : option) c = c == '_' ? '-' : c;
-    by_option += " --" + option + (field.type == FieldType::kBool ? "=" : " ") + value;
+    option = " --" + option + (field.type == FieldType::kBool ? "=" : " ") + value;
+    by_set += set;
+    by_option += option;
+    if (field.name == "method") continue;
+    bench_by_set += set;
+    bench_by_option += option;
   }
   expected.check();
   const std::string segment =
@@ -96,19 +102,16 @@ TEST(Options, EveryParameterIsSetByNameOrByItsOption) {
     ASSERT_EQ(run.exit_code, 0) << run.output;
     expectSettings(dir / "out/movseg-run.json");
   }
-  // demo and bench take the same options (bench all but the method it is given by --methods).
-  std::string bench_options;
-  for (const FieldInfo& field : paramFields()) {
-    if (field.name == "method") continue;
-    bench_options += " --set " + field.name + "=" + test::otherParamValue(field, defaults);
-  }
+  // demo and bench take the same options.
   const test::CommandResult demo =
       test::runCli("demo -o " + (dir / "demo") + " --frames 3" + by_option);
   ASSERT_EQ(demo.exit_code, 0) << demo.output;
   expectSettings(dir / "demo/segmented/movseg-run.json");
-  const test::CommandResult bench =
-      test::runCli("bench " + (dir / "clip") + " --methods dense" + bench_options);
-  EXPECT_EQ(bench.exit_code, 0) << bench.output;
+  for (const std::string& options : {bench_by_set, bench_by_option}) {
+    const test::CommandResult bench =
+        test::runCli("bench " + (dir / "clip") + " --methods dense" + options);
+    EXPECT_EQ(bench.exit_code, 0) << bench.output;
+  }
   const test::CommandResult run = test::runCli(segment + " --set static_camera=TRUE --static");
   EXPECT_EQ(run.exit_code, 0) << run.output;
 }
