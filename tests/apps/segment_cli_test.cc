@@ -12,6 +12,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "eval/metrics.h"
 #include "movseg/fields.h"
 #include "reliability/reliability_fixture.h"
 #include "test_support.h"
@@ -60,9 +61,8 @@ TEST(SegmentCli, WritesOneMaskPerFrameAndStatsLines) {
     EXPECT_EQ(cv::countNonZero((mask != 0) & (mask != 255)), 0);
     EXPECT_TRUE(fs::exists(dir / "out/overlay/" + name));
     if (i < 2) continue;  // the movers are found from the second pair on
-    const cv::Mat truth = cv::imread(dir / "clip/masks/" + name, cv::IMREAD_GRAYSCALE) > 127;
-    const double iou = cv::countNonZero(truth & mask) / static_cast<double>(cv::countNonZero(truth | mask));
-    EXPECT_GT(iou, 0.8) << name;
+    EXPECT_GT(scoreFrame(mask, cv::imread(dir / "clip/masks/" + name, cv::IMREAD_GRAYSCALE)).j, 0.8)
+        << name;
   }
   std::ifstream stats(dir / "stats.jsonl");
   std::string line;

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -25,13 +26,18 @@ namespace fs = std::filesystem;
 
 constexpr int kFrames = 150;
 
-bool waitForFile(const std::string& path, std::chrono::seconds limit) {
+// Polls `done` every 5 ms until it holds (true) or `limit` has passed (false).
+bool waitUntil(const std::function<bool()>& done, std::chrono::seconds limit) {
   const auto end = std::chrono::steady_clock::now() + limit;
-  while (!fs::exists(path)) {
+  while (!done()) {
     if (std::chrono::steady_clock::now() > end) return false;
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   return true;
+}
+
+bool waitForFile(const std::string& path, std::chrono::seconds limit) {
+  return waitUntil([&] { return fs::exists(path); }, limit);
 }
 
 // Sends `signal` to the CLI run `pid` once it has written `file` (midway), waits for it and
@@ -50,18 +56,16 @@ void stopOnceWritten(pid_t pid, const std::string& file, int signal,
 // Waits until the process `pid` catches `signal` (its handler installed: SigCgt in
 // /proc/<pid>/status), for a command that writes nothing midway to show how far it got.
 bool waitForHandler(pid_t pid, int signal, std::chrono::seconds limit) {
-  const auto end = std::chrono::steady_clock::now() + limit;
-  while (std::chrono::steady_clock::now() < end) {
+  const auto catches = [&] {
     std::ifstream status("/proc/" + std::to_string(pid) + "/status");
     std::string line;
     while (std::getline(status, line)) {
       if (line.rfind("SigCgt:", 0) != 0) continue;
-      const unsigned long long caught = std::stoull(line.substr(7), nullptr, 16);
-      if ((caught >> (signal - 1)) & 1) return true;
+      return ((std::stoull(line.substr(7), nullptr, 16) >> (signal - 1)) & 1) != 0;
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  return false;
+    return false;
+  };
+  return waitUntil(catches, limit);
 }
 
 std::string textOf(const std::string& path) {
