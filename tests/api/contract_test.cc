@@ -5,6 +5,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "eval/metrics.h"
 #include "movseg/background_subtractor.h"
 #include "movseg/fields.h"
 #include "movseg/segmenter.h"
@@ -181,6 +182,31 @@ TEST_P(Contract, AnIgnoredRegionNeverMovesAtAnySize) {
   std::vector<cv::Mat> again;
   for (const cv::Mat& frame : frames) again.push_back(segmenter.process(frame).mask);
   EXPECT_TRUE(test::identical(again, expected));
+}
+
+// A region cleared in mid-stream, without reset(), ignores nothing from the next frame on: the
+// movers it hid are in the mask again within two frames, as where it was never set.
+TEST_P(Contract, AnIgnoredRegionClearedInMidStreamLetsTheMoversBack) {
+  const std::vector<cv::Mat> frames = test::synthFrames(12, 5);
+  const cv::Size size = frames[0].size();
+  const cv::Rect left(0, 0, size.width / 2, size.height);
+  const std::vector<cv::Mat> expected = masksOf(frames);
+  cv::Mat region = cv::Mat::zeros(size, CV_8U);
+  region(left).setTo(255);
+  Segmenter segmenter(params());
+  segmenter.setIgnoredRegion(region);
+  const size_t cleared = 6;
+  for (size_t t = 0; t < cleared; ++t) {
+    EXPECT_EQ(cv::countNonZero(segmenter.process(frames[t]).mask(left)), 0) << t;
+  }
+  segmenter.setIgnoredRegion(cv::Mat());
+  for (size_t t = cleared; t < frames.size(); ++t) {
+    const cv::Mat mask = segmenter.process(frames[t]).mask;
+    if (t < cleared + 2) continue;
+    const int shown = cv::countNonZero(expected[t](left));
+    ASSERT_GT(shown, 0) << t;  // nothing to show would prove nothing
+    EXPECT_GT(scoreFrame(mask(left), expected[t](left)).j, 0.8) << t;
+  }
 }
 
 TEST_P(Contract, RefusesAnIgnoredRegionOfAnotherType) {
