@@ -92,6 +92,13 @@ TEST(DenseDavis, BenchGivesReadmesFigures) {
   EXPECT_EQ(means, 3);
 }
 
+// The ground truth of a DAVIS frame file: <sequence>/masks/<its name>.png.
+std::filesystem::path maskOf(const std::string& frame) {
+  const std::filesystem::path path(frame);
+  return path.parent_path().parent_path() / "masks" /
+         std::filesystem::path(path.filename()).replace_extension(".png");
+}
+
 // A DAVIS sequence filmed worse, as scripts/degrade.py writes its variants for README's tables:
 // frame t, as read, becomes film(frame, t) (one picture, or two for a repeated frame), numbered
 // on from 0 and written as JPEG at quality 95 into FOLDER/frames, each beside a link to its mask
@@ -104,8 +111,7 @@ void writeFilmed(const std::string& sequence, const std::string& folder, const F
   const std::vector<std::string> frames = test::davisFrames(sequence, 1000);
   int out = 0;
   for (size_t t = 0; t < frames.size(); ++t) {
-    const fs::path mask = fs::path(test::davisSequence(sequence)) / "masks" /
-                          fs::path(frames[t]).filename().replace_extension(".png");
+    const fs::path mask = maskOf(frames[t]);
     for (const cv::Mat& picture : film(cv::imread(frames[t]), static_cast<int>(t))) {
       char name[16];
       std::snprintf(name, sizeof name, "%05d", out++);
@@ -179,9 +185,8 @@ double meanJWithOverlay(const std::vector<std::string>& frames, const cv::Mat& o
     cv::Mat frame = cv::imread(frames[t]);
     overlay.copyTo(frame, region);
     const cv::Mat mask = segmenter.process(frame).mask;
-    std::string truth = frames[t];
-    truth.replace(truth.rfind("frames"), 6, "masks").replace(truth.size() - 3, 3, "png");
-    if (t > 0) sum += scoreFrame(mask, cv::imread(truth, cv::IMREAD_GRAYSCALE), region).j;
+    if (t == 0) continue;  // no previous frame, no motion cue
+    sum += scoreFrame(mask, cv::imread(maskOf(frames[t]), cv::IMREAD_GRAYSCALE), region).j;
   }
   return sum / static_cast<double>(frames.size() - 1);
 }
