@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <vector>
 
 #include <opencv2/imgproc.hpp>
 
@@ -26,36 +27,74 @@ void checkMaskPair(const cv::Mat& a, const cv::Mat& b, const char* function) {
 
 // DAVIS's seg2bmap (after D. Martin's BSDS code): a pixel is on the boundary when it differs
 // from its right, lower or lower-right neighbour; the last row looks right only, the last column
-// down only, and the bottom-right pixel is never on it. 255 = boundary.
+// down only, and the bottom-right pixel is never on it. 255 = boundary. Whole shifted views at a
+// time: a branch per pixel cost a tenth of a DAVIS bench.
 cv::Mat boundaryMap(const cv::Mat& mask) {
-  cv::Mat boundary(mask.size(), CV_8U);
-  const int last_row = mask.rows - 1;
-  const int last_col = mask.cols - 1;
-  for (int y = 0; y < mask.rows; ++y) {
-    const uchar* row = mask.ptr(y);
-    const uchar* below = mask.ptr(std::min(y + 1, last_row));
-    uchar* out = boundary.ptr(y);
-    for (int x = 0; x < mask.cols; ++x) {
-      const bool value = row[x] != 0;
-      const bool right = x < last_col && (row[x + 1] != 0) != value;
-      const bool down = y < last_row && (below[x] != 0) != value;
-      const bool diagonal = y < last_row && x < last_col && (below[x + 1] != 0) != value;
-      const bool on = y == last_row ? right : x == last_col ? down : right || down || diagonal;
-      out[x] = on ? 255 : 0;
-    }
-  }
+  const cv::Mat binary = mask != 0;
+  cv::Mat boundary = cv::Mat::zeros(mask.size(), CV_8U);
+  const int w = mask.cols, h = mask.rows;
+  // The pixels of (x, y) and of its neighbour (x + dx, y + dy), for every x, y where both exist.
+  const auto differs = [&](int dx, int dy) {
+    const cv::Mat at = binary(cv::Rect(0, 0, w - dx, h - dy));
+    const cv::Mat neighbour = binary(cv::Rect(dx, dy, w - dx, h - dy));
+    cv::Mat out = boundary(cv::Rect(0, 0, w - dx, h - dy));
+    cv::Mat step;
+    cv::bitwise_xor(at, neighbour, step);
+    cv::bitwise_or(out, step, out);
+  };
+  if (w > 1) differs(1, 0);
+  if (h > 1) differs(0, 1);
+  if (w > 1 && h > 1) differs(1, 1);
   return boundary;
 }
 
-// skimage.morphology.disk(radius), the structuring element of DAVIS's dilation.
-cv::Mat disk(int radius) {
-  cv::Mat kernel(2 * radius + 1, 2 * radius + 1, CV_8U);
-  for (int y = -radius; y <= radius; ++y) {
-    for (int x = -radius; x <= radius; ++x) {
-      kernel.at<uchar>(y + radius, x + radius) = x * x + y * y <= radius * radius ? 1 : 0;
+// The half-widths of the rows of skimage.morphology.disk(radius), DAVIS's structuring element:
+// row dy (-radius..radius, at dy + radius) spans -w..w, the largest w with w² + dy² <= radius².
+std::vector<int> diskRows(int radius) {
+  std::vector<int> half_widths;
+  for (int dy = -radius; dy <= radius; ++dy) {
+    int w = 0;
+    while ((w + 1) * (w + 1) + dy * dy <= radius * radius) ++w;
+    half_widths.push_back(w);
+  }
+  return half_widths;
+}
+
+// Running counts along each row of a boundary map: at (y, x), its pixels of row y left of x
+// (CV_32S, a column more than the map).
+cv::Mat rowCounts(const cv::Mat& boundary) {
+  cv::Mat counts(boundary.rows, boundary.cols + 1, CV_32S);
+  for (int y = 0; y < boundary.rows; ++y) {
+    const uchar* in = boundary.ptr(y);
+    int* out = counts.ptr<int>(y);
+    out[0] = 0;
+    for (int x = 0; x < boundary.cols; ++x) out[x + 1] = out[x] + (in[x] != 0);
+  }
+  return counts;
+}
+
+// countNonZero(from & dilate(to, disk)) for boundary maps: each of `from`'s pixels looks along
+// the disk's rows for one of `to`'s (given by its rowCounts), and only its own pixels look.
+// Dilating both maps of every frame whole was a third of a DAVIS bench's time.
+long countNear(const cv::Mat& from, const cv::Mat& to_counts, const std::vector<int>& disk) {
+  const int radius = static_cast<int>(disk.size() / 2);
+  const int width = from.cols;
+  long near = 0;
+  for (int y = 0; y < from.rows; ++y) {
+    const uchar* row = from.ptr(y);
+    for (int x = 0; x < width; ++x) {
+      if (row[x] == 0) continue;
+      for (int dy = std::max(-radius, -y); dy <= std::min(radius, from.rows - 1 - y); ++dy) {
+        const int w = disk[dy + radius];
+        const int* counts = to_counts.ptr<int>(y + dy);
+        if (counts[std::min(x + w + 1, width)] > counts[std::max(x - w, 0)]) {
+          ++near;
+          break;
+        }
+      }
     }
   }
-  return kernel;
+  return near;
 }
 
 PrecisionRecall pixelScores(const FrameScore& counts) {
@@ -141,12 +180,11 @@ double boundaryF(const cv::Mat& pred, const cv::Mat& gt) {
   checkMaskPair(pred, gt, "boundaryF");
   const cv::Mat pred_boundary = boundaryMap(pred);
   const cv::Mat gt_boundary = boundaryMap(gt);
-  const cv::Mat kernel = disk(boundaryTolerance(pred.size()));
-  cv::Mat pred_near, gt_near;
-  cv::dilate(pred_boundary, pred_near, kernel);
-  cv::dilate(gt_boundary, gt_near, kernel);
-  return precisionRecall(cv::countNonZero(pred_boundary & gt_near), cv::countNonZero(pred_boundary),
-                         cv::countNonZero(gt_boundary & pred_near), cv::countNonZero(gt_boundary))
+  const std::vector<int> disk = diskRows(boundaryTolerance(pred.size()));
+  return precisionRecall(countNear(pred_boundary, rowCounts(gt_boundary), disk),
+                         cv::countNonZero(pred_boundary),
+                         countNear(gt_boundary, rowCounts(pred_boundary), disk),
+                         cv::countNonZero(gt_boundary))
       .f();
 }
 
