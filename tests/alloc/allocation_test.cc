@@ -95,11 +95,11 @@ struct Counted {
   Result last;  // of one more frame after the counted ones: what the counted frames went through
 };
 
-// Allocations per frame of `method` on a 320x240 clip, after the first frames have sized every
-// buffer.
+// Allocations per frame of a Segmenter with `params` on a 320x240 clip, after the first frames
+// have sized every buffer.
 // `framed`: the frames letterboxed (black bars found on every frame; no wider than the working
 // width, whose resizes allocate) and a timestamp's box ignored.
-Counted allocationsPerFrame(Method method, bool framed = false) {
+Counted allocationsPerFrame(const Params& params, bool framed = false) {
   SynthOptions clip;
   clip.frames = 24;
   const SynthSequence sequence(clip);
@@ -109,8 +109,6 @@ Counted allocationsPerFrame(Method method, bool framed = false) {
     if (framed) cv::copyMakeBorder(frame, frame, 40, 40, 0, 0, cv::BORDER_CONSTANT, cv::Scalar());
     frames.push_back(frame);
   }
-  Params params;
-  params.method = method;
   Segmenter segmenter(params);
   if (framed) {
     cv::Mat timestamp = cv::Mat::zeros(frames[0].size(), CV_8U);
@@ -138,7 +136,7 @@ Counted allocationsPerFrame(Method method, bool framed = false) {
 // call (cv::eigen, getPerspectiveTransform, filter engines, resizes by two, operations with a
 // scalar) are replaced by code of our own with the same results.
 TEST(Allocations, DenseMakesNoAllocationsPerFrame) {
-  const Counted dense = allocationsPerFrame(Method::kDense);
+  const Counted dense = allocationsPerFrame(Params());
   std::printf("dense: %.1f allocations per frame\n", dense.per_frame);
   EXPECT_EQ(dense.per_frame, 0.0);
   // The whole pipeline ran, up to a mask (a stage that gave up early allocates nothing either).
@@ -146,10 +144,21 @@ TEST(Allocations, DenseMakesNoAllocationsPerFrame) {
   EXPECT_FALSE(dense.last.diagnostics.black_bars);
 }
 
+// Nor with colour histograms per cell (colour_cell): their tables are laid on the first frame
+// of a size, and the cells' confident pixels listed in buffers of the frame's size.
+TEST(Allocations, DenseWithColourCellsMakesNoAllocationsPerFrame) {
+  Params params;
+  params.colour_cell = 40;
+  const Counted cells = allocationsPerFrame(params);
+  std::printf("dense, colour cells: %.1f allocations per frame\n", cells.per_frame);
+  EXPECT_EQ(cells.per_frame, 0.0);
+  EXPECT_GT(cv::countNonZero(cells.last.mask), 0);
+}
+
 // Nor with black bars and an ignored region: the region is scaled, and its margin grown, from
 // buffers kept, the margin only when the region changes.
 TEST(Allocations, DenseWithBlackBarsAndAnIgnoredRegionMakesNoAllocationsPerFrame) {
-  const Counted framed = allocationsPerFrame(Method::kDense, true);
+  const Counted framed = allocationsPerFrame(Params(), true);
   std::printf("dense, framed: %.1f allocations per frame\n", framed.per_frame);
   EXPECT_EQ(framed.per_frame, 0.0);
   // The path this names was taken: the bars were found, and a mask came out.

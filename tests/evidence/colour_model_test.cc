@@ -137,6 +137,57 @@ TEST(ColourModel, TheMoversColoursFadeWhenNoMoverIsSeen) {
   EXPECT_GE(colourEvidence(unseen, bgr)[0], 0.f);
 }
 
+// Red moves at the left of the view and is static at the right, green is static between: 160 x
+// 80 pixels, columns of 40 (cells of 40 x 40, two rows of four). Seen over the frame, red is
+// the mover's colour wherever it shows (the movers show nothing else); in the right-hand cells,
+// which have seen it static only, it says little; in the green cells, which never saw it as
+// background, it says more than over the frame.
+TEST(ColourModel, AColourMeansWhatItMeansWhereItIsSeen) {
+  cv::Mat bgr(80, 160, CV_8UC3, cv::Scalar(kGreen[0], kGreen[1], kGreen[2]));
+  bgr.colRange(0, 40).setTo(cv::Scalar(kRed[0], kRed[1], kRed[2]));
+  bgr.colRange(120, 160).setTo(cv::Scalar(kRed[0], kRed[1], kRed[2]));
+  cv::Mat evidence(bgr.size(), CV_32F, cv::Scalar(-2.5f));
+  evidence.colRange(0, 40).setTo(2.5f);
+  const cv::Mat all_red(bgr.size(), CV_8UC3, cv::Scalar(kRed[0], kRed[1], kRed[2]));
+  auto redEvidence = [&](int cell_side) {  // at the left, the middle and the right
+    Params params;
+    params.colour_cell = cell_side;
+    ColourModel model(params);
+    for (int frame = 0; frame < 10; ++frame) model.update(bgr, evidence, evidence);
+    cv::Mat with_colour;
+    model.addEvidence(all_red, cv::Mat::zeros(bgr.size(), CV_32F), &with_colour);
+    return cv::Vec3f(with_colour.at<float>(60, 20), with_colour.at<float>(60, 80),
+                     with_colour.at<float>(60, 140));
+  };
+  const cv::Vec3f frame = redEvidence(0);
+  EXPECT_NEAR(frame[0], 1.368f, 0.001f);  // 1.25 log(0.996 / (1/3)): p_fg with its prior
+  EXPECT_EQ(frame[1], frame[0]);
+  EXPECT_EQ(frame[2], frame[0]);
+  const cv::Vec3f cells = redEvidence(40);
+  EXPECT_NEAR(cells[0], frame[0], 0.01f);  // the mover's cells saw no background: the frame's
+  EXPECT_GT(cells[1], 2.f);   // never background there
+  EXPECT_LT(cells[2], 0.25f);  // the background's colour there
+  EXPECT_GT(cells[2], 0.f);    // the movers the frame has seen are red: the cell's prior
+}
+
+// Cells of one pixel with 6 bits a channel would want 40,000 x 262,144 bins at 200 x 200: the
+// cells grow until their tables fit (64 MB), and the model still tells the stripes' colours.
+TEST(ColourModel, CellsTooSmallForTheirTablesGrow) {
+  Params params;
+  params.colour_cell = 1;
+  params.colour_bits = 6;
+  cv::Mat bgr(200, 200, CV_8UC3, cv::Scalar(kBlue[0], kBlue[1], kBlue[2]));
+  bgr.colRange(0, 100).setTo(cv::Scalar(kRed[0], kRed[1], kRed[2]));
+  cv::Mat evidence(bgr.size(), CV_32F, cv::Scalar(-2.5f));
+  evidence.colRange(0, 100).setTo(2.5f);
+  ColourModel model(params);
+  model.update(bgr, evidence, evidence);
+  cv::Mat with_colour;
+  model.addEvidence(bgr, cv::Mat::zeros(bgr.size(), CV_32F), &with_colour);
+  EXPECT_GT(with_colour.at<float>(100, 50), 2.f);
+  EXPECT_LT(with_colour.at<float>(100, 150), -1.f);
+}
+
 // Bins worked out sixteen pixels at a time (rowBins) are those of the per-pixel tables: a
 // model learning from a frame and a model learning from the same pixels as one column (one
 // pixel per row: all looked up) add the same colour evidence to the bit, at every bin size.
@@ -145,6 +196,7 @@ TEST(ColourModel, BinsOfWideRowsAreThoseOfSinglePixels) {
   for (int bits = 1; bits <= 6; ++bits) {
     Params params;
     params.colour_bits = bits;
+    params.colour_cell = 0;  // one histogram for any shape of frame
     cv::Mat bgr(24, 53, CV_8UC3), evidence(bgr.size(), CV_32F);
     rng.fill(bgr, cv::RNG::UNIFORM, 0, 256);
     rng.fill(evidence, cv::RNG::UNIFORM, -3.f, 3.f);
