@@ -29,8 +29,8 @@ constexpr float kBinFloor = 1e-4f;
 // A cell's histograms are drawn towards the frame's with the weight of this many of its own
 // pixels: a cell of 40 x 40 working pixels speaks for itself once it has seen a good part of
 // them confidently, and a colour it has not seen means what it means in the frame. DAVIS J with
-// cells of 80 x 60 px: 0.607 / 0.608 / 0.601 at 200 / 500 / 2000 (docs/design.md, "Colour
-// where it is seen").
+// cells of 80 x 60 px (then also learning from what the pair alone calls static): 0.607 / 0.608
+// / 0.601 at 200 / 500 / 2000 (docs/design.md, "Colour where it is seen").
 constexpr float kCellPriorPixels = 500.f;
 // The cells' counts are stored divided by a scale that shrinks by (1 - colour_rate) a frame
 // (updateCells); below this they are brought back to scale 1, every 437 frames at rate 0.1. A
