@@ -137,30 +137,26 @@ void ColourModel::layCells(cv::Size size) {
 // pass over 8 x 6 x 4096 x 2 floats at 320 x 240), the scale they are stored in shrinks, and a
 // pixel counted is stored divided by it; now and then the bins are brought back to scale 1.
 void ColourModel::updateCells(float rate) {
-  if (rate >= 1.f) {  // the first frame's counts alone
-    std::fill(cell_fg_.begin(), cell_fg_.end(), 0.f);
-    std::fill(cell_bg_.begin(), cell_bg_.end(), 0.f);
-    std::fill(cell_fg_pixels_.begin(), cell_fg_pixels_.end(), 0.f);
-    std::fill(cell_bg_pixels_.begin(), cell_bg_pixels_.end(), 0.f);
+  // The first frame's counts alone (rate 1) start from zero; otherwise the scale shrinks.
+  const float rescale = rate >= 1.f ? 0.f : cell_scale_ * (1.f - rate);
+  if (rescale < kSmallestCellScale) {
+    for (std::vector<float>* counts : {&cell_fg_, &cell_bg_, &cell_fg_pixels_, &cell_bg_pixels_})
+      for (float& count : *counts) count *= rescale;
     cell_scale_ = 1.f;
   } else {
-    cell_scale_ *= 1.f - rate;
-    if (cell_scale_ < kSmallestCellScale) {
-      for (std::vector<float>* counts : {&cell_fg_, &cell_bg_, &cell_fg_pixels_, &cell_bg_pixels_})
-        for (float& count : *counts) count *= cell_scale_;
-      cell_scale_ = 1.f;
-    }
+    cell_scale_ = rescale;
   }
   const float counted = rate / cell_scale_;
   const int bin_bits = 3 * params_.colour_bits;
-  for (size_t i = 0; i < fg_seen_; ++i) {
-    cell_fg_[cell_fg_seen_[i]] += counted;
-    cell_fg_pixels_[cell_fg_seen_[i] >> bin_bits] += counted;
-  }
-  for (size_t i = 0; i < bg_seen_; ++i) {
-    cell_bg_[cell_bg_seen_[i]] += counted;
-    cell_bg_pixels_[cell_bg_seen_[i] >> bin_bits] += counted;
-  }
+  auto add = [&](const std::vector<std::uint32_t>& seen, size_t n, std::vector<float>* counts,
+                 std::vector<float>* pixels) {
+    for (size_t i = 0; i < n; ++i) {
+      (*counts)[seen[i]] += counted;
+      (*pixels)[seen[i] >> bin_bits] += counted;
+    }
+  };
+  add(cell_fg_seen_, fg_seen_, &cell_fg_, &cell_fg_pixels_);
+  add(cell_bg_seen_, bg_seen_, &cell_bg_, &cell_bg_pixels_);
 }
 
 float ColourModel::cellEvidence(std::uint32_t entry) const {
@@ -168,11 +164,13 @@ float ColourModel::cellEvidence(std::uint32_t entry) const {
   const std::uint32_t cell = entry >> bin_bits, bin = entry & ((1u << bin_bits) - 1);
   const float frame_fg =
       (foreground_[bin] + kPriorPixels * background_[bin]) * foreground_normaliser_;
-  const float fg = (cell_fg_[entry] * cell_scale_ + kCellPriorPixels * frame_fg) /
-                   (cell_fg_pixels_[cell] * cell_scale_ + kCellPriorPixels);
-  const float bg = (cell_bg_[entry] * cell_scale_ + kCellPriorPixels * background_[bin]) /
-                   (cell_bg_pixels_[cell] * cell_scale_ + kCellPriorPixels);
-  cell_evidence_[entry] = colourSay(fg, bg);
+  // A cell's share of the bin, drawn towards the frame's `share` of it.
+  auto drawn = [&](float count, float pixels, float share) {
+    return (count * cell_scale_ + kCellPriorPixels * share) /
+           (pixels * cell_scale_ + kCellPriorPixels);
+  };
+  cell_evidence_[entry] = colourSay(drawn(cell_fg_[entry], cell_fg_pixels_[cell], frame_fg),
+                                    drawn(cell_bg_[entry], cell_bg_pixels_[cell], background_[bin]));
   cell_stamp_[entry] = update_count_;
   return cell_evidence_[entry];
 }
