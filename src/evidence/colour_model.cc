@@ -169,8 +169,9 @@ float ColourModel::cellEvidence(std::uint32_t entry) const {
     return (count * cell_scale_ + kCellPriorPixels * share) /
            (pixels * cell_scale_ + kCellPriorPixels);
   };
-  cell_evidence_[entry] = colourSay(drawn(cell_fg_[entry], cell_fg_pixels_[cell], frame_fg),
-                                    drawn(cell_bg_[entry], cell_bg_pixels_[cell], background_[bin]));
+  cell_evidence_[entry] =
+      colourSay(drawn(cell_fg_[entry], cell_fg_pixels_[cell], frame_fg),
+                drawn(cell_bg_[entry], cell_bg_pixels_[cell], background_[bin]));
   cell_stamp_[entry] = update_count_;
   return cell_evidence_[entry];
 }
