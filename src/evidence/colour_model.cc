@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include <opencv2/core/hal/intrin.hpp>
 
@@ -32,23 +33,36 @@ constexpr float kBinFloor = 1e-4f;
 // cells of 80 x 60 px (then also learning from what the pair alone calls static): 0.607 / 0.608
 // / 0.601 at 200 / 500 / 2000 (docs/design.md, "Colour where it is seen").
 constexpr float kCellPriorPixels = 500.f;
-// The cells' counts are stored divided by a scale that shrinks by (1 - colour_rate) a frame
-// (updateCells); below this they are brought back to scale 1, every 437 frames at rate 0.1. A
-// stored count stays under 1600 pixels / 1e-20, far within a float's range.
-constexpr float kSmallestCellScale = 1e-20f;
-// The cells' tables hold at most this many bins in all (64 MB): small cells on a large frame,
-// or many colour bits, get larger cells. 40 px cells at 320 x 240 with 4 bits: 196,608.
-constexpr size_t kMaxCellEntries = size_t{1} << 22;
+// A cell's bins have one bit a channel fewer than the frame's: 512 at 4 bits, for the ~1600
+// pixels of a 40 x 40 cell, where the frame's 4096 have ~19 pixels each at 320 x 240. Within a
+// cell's bin the frame's finer histograms tell the colours apart (ColourModel::setCellCorrections).
+constexpr int kCellCoarserBits = 1;
+// The cells' tables hold at most this many bins in all (1 MB each): small cells on a large
+// frame, or many colour bits, get larger cells; every bin is decayed each frame. 40 px cells
+// at 320 x 240 with 4 bits: 24,576.
+constexpr size_t kMaxCellEntries = size_t{1} << 18;
 
 }  // namespace
 
-ColourModel::ColourModel(const Params& params) : params_(params) {
+ColourModel::ColourModel(const Params& params)
+    : params_(params), cell_bits_(std::max(1, params.colour_bits - kCellCoarserBits)) {
   const int bits = params.colour_bits;
   const int shift = 8 - bits;  // an 8-bit channel shifted right by this is its bin
   for (int level = 0; level < 256; ++level) {
     bin_bits_[0][level] = (level >> shift) << (2 * bits);
     bin_bits_[1][level] = (level >> shift) << bits;
     bin_bits_[2][level] = level >> shift;
+  }
+  // A bin's cell bin: each channel's level with its lowest bits dropped.
+  const int dropped = bits - cell_bits_, mask = (1 << bits) - 1;
+  cell_bin_.resize(size_t{1} << (3 * bits));
+  for (size_t bin = 0; bin < cell_bin_.size(); ++bin) {
+    int cell_bin = 0;
+    for (int c = 0; c < 3; ++c) {
+      const int level = static_cast<int>(bin >> ((2 - c) * bits)) & mask;
+      cell_bin |= (level >> dropped) << ((2 - c) * cell_bits_);
+    }
+    cell_bin_[bin] = static_cast<std::uint16_t>(cell_bin);
   }
 }
 
@@ -88,19 +102,22 @@ void ColourModel::addEvidence(const cv::Mat& bgr, const cv::Mat& evidence,
   }
   with_colour->create(evidence.size(), CV_32F);
   const bool cells = cell_cols_ > 0 && bgr.size() == cells_size_;
+  const auto weight = static_cast<float>(params_.colour_weight);
+  const float floor = sayFloor(), clip = static_cast<float>(params_.colour_clip);
   for (int y = 0; y < bgr.rows; ++y) {
     const std::uint16_t* pixel_bins = rowBins(bgr.ptr<cv::Vec3b>(y), bgr.cols);
     const float* e = evidence.ptr<float>(y);
     float* out = with_colour->ptr<float>(y);
-    if (cells) {
-      const std::uint32_t row_entry = row_entry_[y];
-      for (int x = 0; x < bgr.cols; ++x) {
-        const std::uint32_t entry = row_entry + column_entry_[x] + pixel_bins[x];
-        out[x] = e[x] + (cell_stamp_[entry] == update_count_ ? cell_evidence_[entry]
-                                                             : cellEvidence(entry));
-      }
-    } else {
+    if (!cells) {
       for (int x = 0; x < bgr.cols; ++x) out[x] = e[x] + evidence_[pixel_bins[x]];
+      continue;
+    }
+    for (int column = 0; column < cell_cols_; ++column) {
+      const float* correction = cell_correction_.data() + cellEntry(column, y);
+      for (int x = cell_column_start_[column]; x < cell_column_start_[column + 1]; ++x) {
+        const float ratio = ratio_[pixel_bins[x]] + correction[cell_bin_[pixel_bins[x]]];
+        out[x] = e[x] + weight * std::clamp(ratio, floor, clip);
+      }
     }
   }
 }
@@ -108,7 +125,7 @@ void ColourModel::addEvidence(const cv::Mat& bgr, const cv::Mat& evidence,
 void ColourModel::layCells(cv::Size size) {
   if (size == cells_size_) return;
   cells_size_ = size;
-  const int bin_bits = 3 * params_.colour_bits;
+  const int bin_bits = 3 * cell_bits_;
   // Cells twice as wide until their tables fit kMaxCellEntries.
   for (int side = params_.colour_cell;; side *= 2) {
     cell_cols_ = side > 0 ? std::max(1, (size.width + side / 2) / side) : 0;
@@ -117,70 +134,66 @@ void ColourModel::layCells(cv::Size size) {
   }
   if (cell_cols_ * cell_rows_ <= 1) cell_cols_ = cell_rows_ = 0;  // the frame's own histograms
   const int cells = cell_cols_ * cell_rows_;
-  column_entry_.resize(static_cast<size_t>(size.width));
-  row_entry_.resize(static_cast<size_t>(size.height));
-  for (int x = 0; x < size.width; ++x) column_entry_[x] = (x * cell_cols_ / size.width) << bin_bits;
-  for (int y = 0; y < size.height; ++y)
-    row_entry_[y] = (y * cell_rows_ / size.height * cell_cols_) << bin_bits;
-  const size_t entries = static_cast<size_t>(cells) << bin_bits;
-  cell_fg_.assign(entries, 0.f);
-  cell_bg_.assign(entries, 0.f);
+  cell_column_start_.resize(static_cast<size_t>(cell_cols_) + 1);
+  for (int column = 0; column <= cell_cols_; ++column)  // the first x with x * cols / width >= column
+    cell_column_start_[column] = (column * size.width + cell_cols_ - 1) / std::max(1, cell_cols_);
+  cell_row_.resize(static_cast<size_t>(size.height));
+  for (int y = 0; y < size.height; ++y) cell_row_[y] = y * cell_rows_ / size.height;
+  const size_t entries = static_cast<size_t>(cells) << (3 * cell_bits_);
+  for (std::vector<float>* table :
+       {&cell_fg_, &cell_bg_, &cell_count_fg_, &cell_count_bg_, &cell_correction_})
+    table->assign(entries, 0.f);
   cell_fg_pixels_.assign(static_cast<size_t>(cells), 0.f);
   cell_bg_pixels_.assign(static_cast<size_t>(cells), 0.f);
-  cell_evidence_.assign(entries, 0.f);
-  cell_stamp_.assign(entries, 0);
-  cell_fg_seen_.resize(static_cast<size_t>(cells > 0 ? size.area() : 0));
-  cell_bg_seen_.resize(static_cast<size_t>(cells > 0 ? size.area() : 0));
 }
 
-// The cells' histograms decay by (1 - rate) a frame. Rather than every bin of every cell (a
-// pass over 8 x 6 x 4096 x 2 floats at 320 x 240), the scale they are stored in shrinks, and a
-// pixel counted is stored divided by it; now and then the bins are brought back to scale 1.
+// Moving averages of the cells' counts, as the frame's foreground, and what they say.
 void ColourModel::updateCells(float rate) {
-  // The first frame's counts alone (rate 1) start from zero; otherwise the scale shrinks.
-  const float rescale = rate >= 1.f ? 0.f : cell_scale_ * (1.f - rate);
-  if (rescale < kSmallestCellScale) {
-    for (std::vector<float>* counts : {&cell_fg_, &cell_bg_, &cell_fg_pixels_, &cell_bg_pixels_})
-      for (float& count : *counts) count *= rescale;
-    cell_scale_ = 1.f;
-  } else {
-    cell_scale_ = rescale;
-  }
-  const float counted = rate / cell_scale_;
-  const int bin_bits = 3 * params_.colour_bits;
-  auto add = [&](const std::vector<std::uint32_t>& seen, size_t n, std::vector<float>* counts,
-                 std::vector<float>* pixels) {
-    for (size_t i = 0; i < n; ++i) {
-      (*counts)[seen[i]] += counted;
-      (*pixels)[seen[i] >> bin_bits] += counted;
+  const size_t cell_bins = size_t{1} << (3 * cell_bits_);
+  auto learn = [&](std::vector<float>* counts, const std::vector<float>& counted,
+                   std::vector<float>* pixels) {
+    for (size_t entry = 0; entry < counts->size(); ++entry)
+      (*counts)[entry] += rate * (counted[entry] - (*counts)[entry]);
+    for (size_t cell = 0; cell < pixels->size(); ++cell) {
+      const auto first = counts->begin() + static_cast<std::ptrdiff_t>(cell * cell_bins);
+      (*pixels)[cell] = std::accumulate(first, first + static_cast<std::ptrdiff_t>(cell_bins), 0.f);
     }
   };
-  add(cell_fg_seen_, fg_seen_, &cell_fg_, &cell_fg_pixels_);
-  add(cell_bg_seen_, bg_seen_, &cell_bg_, &cell_bg_pixels_);
+  learn(&cell_fg_, cell_count_fg_, &cell_fg_pixels_);
+  learn(&cell_bg_, cell_count_bg_, &cell_bg_pixels_);
+  setCellCorrections();
 }
 
-float ColourModel::cellEvidence(std::uint32_t entry) const {
-  const int bin_bits = 3 * params_.colour_bits;
-  const std::uint32_t cell = entry >> bin_bits, bin = entry & ((1u << bin_bits) - 1);
-  const float frame_fg =
-      (foreground_[bin] + kPriorPixels * background_[bin]) * foreground_normaliser_;
-  // A cell's share of the bin, drawn towards the frame's `share` of it.
-  auto drawn = [&](float count, float pixels, float share) {
-    return (count * cell_scale_ + kCellPriorPixels * share) /
-           (pixels * cell_scale_ + kCellPriorPixels);
-  };
-  cell_evidence_[entry] =
-      colourSay(drawn(cell_fg_[entry], cell_fg_pixels_[cell], frame_fg),
-                drawn(cell_bg_[entry], cell_bg_pixels_[cell], background_[bin]));
-  cell_stamp_[entry] = update_count_;
-  return cell_evidence_[entry];
+// A cell knows its colours coarsely, the frame finely: p(colour) in a cell is the cell's p of
+// the colour's cell bin, drawn towards the frame's by the weight of kCellPriorPixels, times the
+// frame's p of the colour within that bin. So the cell's log ratio is the frame's plus a
+// correction per cell bin: the cell's log ratio of the bin less the frame's. A cell that has
+// seen nothing adds nothing. Every bin of every cell, its ratio first and then the logs in one
+// vectorised pass: a frame shows most cells' common bins, and a bin worked out when first
+// looked up cost more in addEvidence() than this.
+void ColourModel::setCellCorrections() {
+  const size_t cell_bins = size_t{1} << (3 * cell_bits_);
+  for (size_t cell = 0; cell < cell_fg_pixels_.size(); ++cell) {
+    const float fg_scale = 1.f / (cell_fg_pixels_[cell] + kCellPriorPixels);
+    const float bg_scale = 1.f / (cell_bg_pixels_[cell] + kCellPriorPixels);
+    const size_t first = cell * cell_bins;
+    for (size_t bin = 0; bin < cell_bins; ++bin) {
+      const float fg = (cell_fg_[first + bin] + kCellPriorPixels * cell_bin_fg_[bin]) * fg_scale;
+      const float bg = (cell_bg_[first + bin] + kCellPriorPixels * cell_bin_bg_[bin]) * bg_scale;
+      cell_correction_[first + bin] = (fg + kBinFloor) / (bg + kBinFloor) * frame_odds_[bin];
+    }
+  }
+  cv::Mat corrections(1, static_cast<int>(cell_correction_.size()), CV_32F,
+                      cell_correction_.data());
+  cv::log(corrections, corrections);
 }
 
-float ColourModel::colourSay(float foreground, float background) const {
-  const auto clip = static_cast<float>(params_.colour_clip);
-  const float floor = std::max(-clip, std::log(kUnseenMoverShare));
-  const float ratio = std::log((foreground + kBinFloor) / (background + kBinFloor));
-  return static_cast<float>(params_.colour_weight) * std::clamp(ratio, floor, clip);
+float ColourModel::logRatio(float foreground, float background) {
+  return std::log((foreground + kBinFloor) / (background + kBinFloor));
+}
+
+float ColourModel::sayFloor() const {
+  return std::max(-static_cast<float>(params_.colour_clip), std::log(kUnseenMoverShare));
 }
 
 template <bool kCells>
@@ -190,31 +203,31 @@ float ColourModel::countPixels(const cv::Mat& bgr, const cv::Mat& evidence,
   const auto forgetting = static_cast<float>(params_.colour_forgetting);
   float* count_fg = count_fg_.data();
   float* count_bg = count_bg_.data();
-  std::uint32_t* fg_seen = cell_fg_seen_.data();
-  std::uint32_t* bg_seen = cell_bg_seen_.data();
-  size_t fg_seen_count = 0, bg_seen_count = 0;
   float total_bg = 0;
+  const int columns = kCells ? cell_cols_ : 1;
   for (int y = 0; y < bgr.rows; ++y) {
     const std::uint16_t* pixel_bins = rowBins(bgr.ptr<cv::Vec3b>(y), bgr.cols);
     const float* e = evidence.ptr<float>(y);
     const float* pair = pair_evidence.ptr<float>(y);
-    const std::uint32_t row_entry = kCells ? row_entry_[y] : 0;
-    for (int x = 0; x < bgr.cols; ++x) {
-      if (e[x] > confident) {
-        ++count_fg[pixel_bins[x]];
-        if (kCells) fg_seen[fg_seen_count++] = row_entry + column_entry_[x] + pixel_bins[x];
-      } else if (e[x] < -confident) {
-        ++count_bg[pixel_bins[x]];
-        ++total_bg;
-        if (kCells) bg_seen[bg_seen_count++] = row_entry + column_entry_[x] + pixel_bins[x];
-      } else if (pair[x] <= -confident) {
-        count_bg[pixel_bins[x]] += forgetting;
-        total_bg += forgetting;
+    for (int column = 0; column < columns; ++column) {
+      float* cell_fg = kCells ? cell_count_fg_.data() + cellEntry(column, y) : nullptr;
+      float* cell_bg = kCells ? cell_count_bg_.data() + cellEntry(column, y) : nullptr;
+      const int end = kCells ? cell_column_start_[column + 1] : bgr.cols;
+      for (int x = kCells ? cell_column_start_[column] : 0; x < end; ++x) {
+        if (e[x] > confident) {
+          ++count_fg[pixel_bins[x]];
+          if (kCells) ++cell_fg[cell_bin_[pixel_bins[x]]];
+        } else if (e[x] < -confident) {
+          ++count_bg[pixel_bins[x]];
+          ++total_bg;
+          if (kCells) ++cell_bg[cell_bin_[pixel_bins[x]]];
+        } else if (pair[x] <= -confident) {
+          count_bg[pixel_bins[x]] += forgetting;
+          total_bg += forgetting;
+        }
       }
     }
   }
-  fg_seen_ = fg_seen_count;
-  bg_seen_ = bg_seen_count;
   return total_bg;
 }
 
@@ -225,6 +238,10 @@ void ColourModel::update(const cv::Mat& bgr, const cv::Mat& evidence,
   count_bg_.assign(bins, 0.f);
   layCells(bgr.size());
   const bool cells = cell_cols_ > 0;
+  if (cells) {
+    std::fill(cell_count_fg_.begin(), cell_count_fg_.end(), 0.f);
+    std::fill(cell_count_bg_.begin(), cell_count_bg_.end(), 0.f);
+  }
   const float total_bg = cells ? countPixels<true>(bgr, evidence, pair_evidence)
                                : countPixels<false>(bgr, evidence, pair_evidence);
   if (total_bg < kMinPixels) return;
@@ -239,18 +256,26 @@ void ColourModel::update(const cv::Mat& bgr, const cv::Mat& evidence,
     foreground_pixels += foreground_[b];
   }
   // Once per bin rather than once per pixel: at 4 bits a working frame has 14 pixels per bin.
-  foreground_normaliser_ = 1.f / (foreground_pixels + kPriorPixels);
+  const float normaliser = 1.f / (foreground_pixels + kPriorPixels);
+  const auto weight = static_cast<float>(params_.colour_weight);
+  const float floor = sayFloor(), clip = static_cast<float>(params_.colour_clip);
   evidence_.resize(bins);
+  ratio_.resize(bins);
+  const size_t cell_bins = size_t{1} << (3 * cell_bits_);
+  cell_bin_fg_.assign(cell_bins, 0.f);
+  cell_bin_bg_.assign(cell_bins, 0.f);
   for (size_t b = 0; b < bins; ++b) {
-    const float fg = (foreground_[b] + kPriorPixels * background_[b]) * foreground_normaliser_;
-    evidence_[b] = colourSay(fg, background_[b]);
+    const float fg = (foreground_[b] + kPriorPixels * background_[b]) * normaliser;
+    ratio_[b] = logRatio(fg, background_[b]);
+    evidence_[b] = weight * std::clamp(ratio_[b], floor, clip);
+    cell_bin_fg_[cell_bin_[b]] += fg;
+    cell_bin_bg_[cell_bin_[b]] += background_[b];
   }
-  if (cells) updateCells(rate);
-  // Every cell's evidence is out of date; stamps start again before the count comes round.
-  if (++update_count_ == 0) {
-    std::fill(cell_stamp_.begin(), cell_stamp_.end(), 0);
-    update_count_ = 1;
-  }
+  if (!cells) return;
+  frame_odds_.resize(cell_bins);
+  for (size_t bin = 0; bin < cell_bins; ++bin)
+    frame_odds_[bin] = (cell_bin_bg_[bin] + kBinFloor) / (cell_bin_fg_[bin] + kBinFloor);
+  updateCells(rate);
 }
 
 void ColourModel::reset() {

@@ -50,19 +50,23 @@ class ColourModel {
   const std::uint16_t* rowBins(const cv::Vec3b* row, int width) const;
 
   // Counts the confident pixels of a frame into count_fg_ and count_bg_ (the background's
-  // total returned) and, with kCells, each one's cell entry into cell_fg_seen_ or cell_bg_seen_.
+  // total returned) and, with kCells, into cell_count_fg_ and cell_count_bg_.
   template <bool kCells>
   float countPixels(const cv::Mat& bgr, const cv::Mat& evidence, const cv::Mat& pair_evidence);
   // The grid of cells for frames of `size` (none where one cell would hold the frame).
   void layCells(cv::Size size);
-  // Decays the cells' histograms and adds the pixels update() counted in them.
+  // The first entry (cell * cell bins) of the cell at `column` of the grid and row y's cells.
+  size_t cellEntry(int column, int y) const {
+    return static_cast<size_t>(cell_row_[y] * cell_cols_ + column) << (3 * cell_bits_);
+  }
+  // Adds the pixels update() counted in the cells to their decaying histograms.
   void updateCells(float rate);
-  // The colour evidence of a cell's bin (`entry`: cell * bins + bin) from the cell's histograms,
-  // each drawn towards the frame's by the weight of kCellPriorPixels; stamped as worked out
-  // since the last update.
-  float cellEvidence(std::uint32_t entry) const;
-  // The log ratio of p_fg / p_bg, clipped, times colour_weight.
-  float colourSay(float foreground, float background) const;
+  // Every cell bin's log ratio in its cell less the frame's, into cell_correction_.
+  void setCellCorrections();
+  // log(p_fg / p_bg), kept off infinity where a bin was never seen.
+  static float logRatio(float foreground, float background);
+  // The least colour may say, before colour_weight: max(-colour_clip, log(kUnseenMoverShare)).
+  float sayFloor() const;
 
   Params params_;
   // Per channel and 8-bit level, its bits of the bin: the first channel's are the highest.
@@ -72,27 +76,24 @@ class ColourModel {
   // which fades when no mover is seen); the background's normalised.
   std::vector<float> foreground_, background_;
   std::vector<float> evidence_;              // per bin: what addEvidence() adds
+  std::vector<float> ratio_;                 // per bin: the log ratio, unclipped
   std::vector<float> count_fg_, count_bg_;  // scratch of update()
-  float foreground_normaliser_ = 0;  // 1 / (the foreground's pixels + kPriorPixels)
 
-  // The cells: a grid of cell_cols_ x cell_rows_ over frames of cells_size_ (0 x 0: none).
+  // The cells: a grid of cell_cols_ x cell_rows_ over frames of cells_size_ (0 x 0: none),
+  // each with histograms of cell_bits_ a channel.
+  int cell_bits_;
+  std::vector<std::uint16_t> cell_bin_;  // per bin: its cell bin
+  // Per cell bin: the frame's p_fg and p_bg of it (sums of its bins'), and p_bg / p_fg.
+  std::vector<float> cell_bin_fg_, cell_bin_bg_, frame_odds_;
   cv::Size cells_size_;
   int cell_cols_ = 0, cell_rows_ = 0;
-  // The column's cell and the row's first cell, as entries (cell * bins) of the tables below.
-  std::vector<std::uint32_t> column_entry_, row_entry_;
-  // Per cell and bin (cell * bins + bin): the histograms in pixels, moving averages as the
-  // frame's foreground; per cell their sums. Each stored divided by cell_scale_.
-  std::vector<float> cell_fg_, cell_bg_, cell_fg_pixels_, cell_bg_pixels_;
-  float cell_scale_ = 1.f;
-  // Per cell and bin: the evidence, valid where cell_stamp_ is the current update_count_ (a
-  // frame shows a few hundred of a cell's bins: the others are never worked out).
-  mutable std::vector<float> cell_evidence_;
-  mutable std::vector<std::uint32_t> cell_stamp_;
-  std::uint32_t update_count_ = 0;
-  // Scratch of update(): the entry (cell * bins + bin) of each confident pixel, by side, the
-  // first fg_seen_ and bg_seen_ of them this frame's.
-  std::vector<std::uint32_t> cell_fg_seen_, cell_bg_seen_;
-  size_t fg_seen_ = 0, bg_seen_ = 0;
+  // The first x of each column of cells (and the width after the last); each y's row of cells.
+  std::vector<int> cell_column_start_, cell_row_;
+  // Per cell and cell bin (cell * cell bins + cell bin): the histograms in pixels, moving
+  // averages as the frame's foreground, the counts of update()'s frame, and what the cell says
+  // beyond the frame (setCellCorrections); per cell the histograms' sums.
+  std::vector<float> cell_fg_, cell_bg_, cell_count_fg_, cell_count_bg_, cell_correction_;
+  std::vector<float> cell_fg_pixels_, cell_bg_pixels_;
   // Scratch of rowBins().
   mutable std::vector<std::uint16_t> row_bins_;
 };

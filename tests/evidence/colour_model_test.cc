@@ -170,8 +170,9 @@ TEST(ColourModel, AColourMeansWhatItMeansWhereItIsSeen) {
   EXPECT_GT(cells[2], 0.f);    // the movers the frame has seen are red: the cell's prior
 }
 
-// Cells of one pixel with 6 bits a channel would want 40,000 x 262,144 bins at 200 x 200: the
-// cells grow until their tables fit (64 MB), and the model still tells the stripes' colours.
+// Cells of one pixel with 6 bits a channel (5 in a cell) would want 40,000 x 32,768 bins at 200
+// x 200: the cells grow until their tables fit (1 MB each), and the model still tells the
+// stripes' colours.
 TEST(ColourModel, CellsTooSmallForTheirTablesGrow) {
   Params params;
   params.colour_cell = 1;
