@@ -135,11 +135,13 @@ void ColourModel::layCells(cv::Size size) {
   if (cell_cols_ * cell_rows_ <= 1) cell_cols_ = cell_rows_ = 0;  // the frame's own histograms
   const int cells = cell_cols_ * cell_rows_;
   cell_column_start_.resize(static_cast<size_t>(cell_cols_) + 1);
-  for (int column = 0; column <= cell_cols_; ++column)  // the first x with x * cols / width >= column
-    cell_column_start_[column] = (column * size.width + cell_cols_ - 1) / std::max(1, cell_cols_);
+  // Each column's first x: the least with x * cols / width >= column.
+  const int columns = std::max(1, cell_cols_);
+  for (int column = 0; column <= cell_cols_; ++column)
+    cell_column_start_[column] = (column * size.width + columns - 1) / columns;
   cell_row_.resize(static_cast<size_t>(size.height));
   for (int y = 0; y < size.height; ++y) cell_row_[y] = y * cell_rows_ / size.height;
-  const size_t entries = static_cast<size_t>(cells) << (3 * cell_bits_);
+  const size_t entries = static_cast<size_t>(cells) << bin_bits;
   for (std::vector<float>* table :
        {&cell_fg_, &cell_bg_, &cell_count_fg_, &cell_count_bg_, &cell_correction_})
     table->assign(entries, 0.f);

@@ -1,8 +1,8 @@
 // What the moving objects and the background look like, learnt over the stream: two colour
 // histograms, updated from the pixels whose evidence is confident, forgetting at a fixed rate;
 // the foreground's drawn towards the background's when few movers are seen. The same two for
-// each cell of a grid (colour_cell), from its confident pixels, drawn towards the frame's: what
-// a colour means where it is seen.
+// each cell of a grid (colour_cell), a bit a channel coarser, from its confident pixels, drawn
+// towards the frame's: what a colour means where it is seen.
 // Their log ratio is evidence for the pixels motion leaves undecided (a slow object's
 // interior, a flat patch the flow cannot follow).
 #pragma once
@@ -75,8 +75,8 @@ class ColourModel {
   // Empty until learnt. The foreground's in pixels (a moving average of each frame's counts,
   // which fades when no mover is seen); the background's normalised.
   std::vector<float> foreground_, background_;
-  std::vector<float> evidence_;              // per bin: what addEvidence() adds
-  std::vector<float> ratio_;                 // per bin: the log ratio, unclipped
+  std::vector<float> evidence_;             // per bin: what addEvidence() adds
+  std::vector<float> ratio_;                // per bin: the log ratio, unclipped
   std::vector<float> count_fg_, count_bg_;  // scratch of update()
 
   // The cells: a grid of cell_cols_ x cell_rows_ over frames of cells_size_ (0 x 0: none),

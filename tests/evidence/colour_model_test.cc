@@ -170,6 +170,39 @@ TEST(ColourModel, AColourMeansWhatItMeansWhereItIsSeen) {
   EXPECT_GT(cells[2], 0.f);    // the movers the frame has seen are red: the cell's prior
 }
 
+// Red at level 208 moves at the left; red at level 192, in the same cell bin (3 bits a channel)
+// but another of the frame's bins (4 bits), is static at the right, green static between; the
+// cells of the middle see nothing confident. 160 x 80 pixels, cells of 40 x 40. The right-hand
+// cells learnt their cell bin as the background's, yet the frame's finer histograms still tell
+// the mover's red apart there: full say for it (a cell's say alone, 1.25 log(0.99 / 0.84) =
+// 0.2), none for the static red. Where the cells saw nothing, the frame's say, to the float.
+TEST(ColourModel, ColoursThatShareACellBinAreToldApartByTheFrame) {
+  const cv::Scalar red208(0, 0, 208), red192(0, 0, 192);
+  cv::Mat bgr(80, 160, CV_8UC3, cv::Scalar(kGreen[0], kGreen[1], kGreen[2]));
+  bgr.colRange(0, 40).setTo(red208);
+  bgr.colRange(120, 160).setTo(red192);
+  cv::Mat evidence(bgr.size(), CV_32F, cv::Scalar(-2.5f));
+  evidence.colRange(0, 40).setTo(2.5f);
+  evidence.colRange(80, 120).setTo(0.f);
+  auto evidenceOf = [&](const cv::Scalar& colour, int cell_side) {  // in the middle, the right
+    Params params;
+    params.colour_cell = cell_side;
+    ColourModel model(params);
+    for (int frame = 0; frame < 10; ++frame) model.update(bgr, evidence, evidence);
+    cv::Mat with_colour;
+    model.addEvidence(cv::Mat(bgr.size(), CV_8UC3, colour),
+                      cv::Mat::zeros(bgr.size(), CV_32F), &with_colour);
+    return cv::Vec2f(with_colour.at<float>(60, 100), with_colour.at<float>(60, 140));
+  };
+  const Params params;
+  const auto most = static_cast<float>(params.colour_weight * params.colour_clip);
+  const auto least = static_cast<float>(params.colour_weight * std::log(0.25));
+  EXPECT_FLOAT_EQ(evidenceOf(red208, 40)[1], most);
+  EXPECT_FLOAT_EQ(evidenceOf(red192, 40)[1], least);
+  for (const cv::Scalar& colour : {red208, red192, cv::Scalar(kGreen[0], kGreen[1], kGreen[2])})
+    EXPECT_NEAR(evidenceOf(colour, 40)[0], evidenceOf(colour, 0)[0], 1e-5f);
+}
+
 // Cells of one pixel with 6 bits a channel (5 in a cell) would want 40,000 x 32,768 bins at 200
 // x 200: the cells grow until their tables fit (1 MB each), and the model still tells the
 // stripes' colours.
