@@ -33,14 +33,25 @@ constexpr float kBinFloor = 1e-4f;
 // cells of 80 x 60 px (then also learning from what the pair alone calls static): 0.607 / 0.608
 // / 0.601 at 200 / 500 / 2000 (docs/design.md, "Colour where it is seen").
 constexpr float kCellPriorPixels = 500.f;
-// A cell's bins have one bit a channel fewer than the frame's: 512 at 4 bits, for the ~1600
-// pixels of a 40 x 40 cell, where the frame's 4096 have ~19 pixels each at 320 x 240. Within a
-// cell's bin the frame's finer histograms tell the colours apart (ColourModel::setCellCorrections).
+// A cell's bins have one bit a channel fewer than the frame's (but one at least): 512 at 4 bits,
+// for the ~1600 pixels of a 40 x 40 cell, where the frame's 4096 have ~19 pixels each at 320 x
+// 240. Within a cell's bin the frame's finer histograms tell colours apart (setCellCorrections).
 constexpr int kCellCoarserBits = 1;
 // The cells' tables hold at most this many bins in all (1 MB each): small cells on a large
 // frame, or many colour bits, get larger cells; every bin is decayed each frame. 40 px cells
 // at 320 x 240 with 4 bits: 24,576.
 constexpr size_t kMaxCellEntries = size_t{1} << 18;
+// A decaying count or share below this is zero: a bin not seen for ~850 frames would otherwise
+// sink to a subnormal float and stay there (x + 0.1 (0 - x) rounds back to x), and arithmetic on
+// subnormals is many times slower on some CPUs. Far below anything that changes a sum with
+// kBinFloor or a cell's prior.
+constexpr float kNegligible = 1e-30f;
+
+// `value` moved by `rate` towards `target`, a moving average; zero once negligible.
+float decayed(float value, float target, float rate) {
+  const float moved = value + rate * (target - value);
+  return moved < kNegligible ? 0.f : moved;
+}
 
 }  // namespace
 
@@ -66,29 +77,27 @@ ColourModel::ColourModel(const Params& params)
   }
 }
 
-// Sixteen pixels at a time where a bin fits 16 bits (colour_bits up to 5): the channels
-// shifted in 16-bit lanes, as the tables of binOf() hold them. A bin looked up per pixel cost
+// Sixteen pixels at a time, the channels shifted in 16-bit lanes (a bin fits 16 bits:
+// colour_bits is at most 5), as the tables of binOf() hold them. A bin looked up per pixel cost
 // twice the instructions.
 const std::uint16_t* ColourModel::rowBins(const cv::Vec3b* row, int width) const {
   row_bins_.resize(static_cast<size_t>(width));
   std::uint16_t* bins = row_bins_.data();
   const int bits = params_.colour_bits, shift = 8 - bits;
   int x = 0;
-  if (3 * bits <= 16) {
-    for (; x + 16 <= width; x += 16) {
-      cv::v_uint8x16 channel[3];
-      cv::v_load_deinterleave(&row[x][0], channel[0], channel[1], channel[2]);
-      cv::v_uint16x8 low = cv::v_setzero_u16(), high = low;
-      for (int c = 0; c < 3; ++c) {
-        cv::v_uint16x8 channel_low, channel_high;
-        cv::v_expand(channel[c], channel_low, channel_high);
-        const int place = (2 - c) * bits;  // the first channel's bits are the highest
-        low |= (channel_low >> shift) << place;
-        high |= (channel_high >> shift) << place;
-      }
-      cv::v_store(bins + x, low);
-      cv::v_store(bins + x + 8, high);
+  for (; x + 16 <= width; x += 16) {
+    cv::v_uint8x16 channel[3];
+    cv::v_load_deinterleave(&row[x][0], channel[0], channel[1], channel[2]);
+    cv::v_uint16x8 low = cv::v_setzero_u16(), high = low;
+    for (int c = 0; c < 3; ++c) {
+      cv::v_uint16x8 channel_low, channel_high;
+      cv::v_expand(channel[c], channel_low, channel_high);
+      const int place = (2 - c) * bits;  // the first channel's bits are the highest
+      low |= (channel_low >> shift) << place;
+      high |= (channel_high >> shift) << place;
     }
+    cv::v_store(bins + x, low);
+    cv::v_store(bins + x + 8, high);
   }
   for (; x < width; ++x) bins[x] = static_cast<std::uint16_t>(binOf(row[x]));
   return bins;
@@ -138,7 +147,8 @@ void ColourModel::layCells(cv::Size size) {
   // Each column's first x: the least with x * cols / width >= column.
   const int columns = std::max(1, cell_cols_);
   for (int column = 0; column <= cell_cols_; ++column)
-    cell_column_start_[column] = (column * size.width + columns - 1) / columns;
+    cell_column_start_[column] =
+        static_cast<int>((std::int64_t{column} * size.width + columns - 1) / columns);
   cell_row_.resize(static_cast<size_t>(size.height));
   for (int y = 0; y < size.height; ++y) cell_row_[y] = y * cell_rows_ / size.height;
   const size_t entries = static_cast<size_t>(cells) << bin_bits;
@@ -155,7 +165,7 @@ void ColourModel::updateCells(float rate) {
   auto learn = [&](std::vector<float>* counts, const std::vector<float>& counted,
                    std::vector<float>* pixels) {
     for (size_t entry = 0; entry < counts->size(); ++entry)
-      (*counts)[entry] += rate * (counted[entry] - (*counts)[entry]);
+      (*counts)[entry] = decayed((*counts)[entry], counted[entry], rate);
     for (size_t cell = 0; cell < pixels->size(); ++cell) {
       const auto first = counts->begin() + static_cast<std::ptrdiff_t>(cell * cell_bins);
       (*pixels)[cell] = std::accumulate(first, first + static_cast<std::ptrdiff_t>(cell_bins), 0.f);
@@ -182,7 +192,7 @@ void ColourModel::setCellCorrections() {
     for (size_t bin = 0; bin < cell_bins; ++bin) {
       const float fg = (cell_fg_[first + bin] + kCellPriorPixels * cell_bin_fg_[bin]) * fg_scale;
       const float bg = (cell_bg_[first + bin] + kCellPriorPixels * cell_bin_bg_[bin]) * bg_scale;
-      cell_correction_[first + bin] = (fg + kBinFloor) / (bg + kBinFloor) * frame_odds_[bin];
+      cell_correction_[first + bin] = (fg + kBinFloor) / (bg + kBinFloor) * frame_bg_per_fg_[bin];
     }
   }
   cv::Mat corrections(1, static_cast<int>(cell_correction_.size()), CV_32F,
@@ -253,11 +263,10 @@ void ColourModel::update(const cv::Mat& bgr, const cv::Mat& evidence,
   background_.resize(bins, 0.f);
   float foreground_pixels = 0;
   for (size_t b = 0; b < bins; ++b) {
-    foreground_[b] += rate * (count_fg_[b] - foreground_[b]);
-    background_[b] += rate * (count_bg_[b] / total_bg - background_[b]);
+    foreground_[b] = decayed(foreground_[b], count_fg_[b], rate);
+    background_[b] = decayed(background_[b], count_bg_[b] / total_bg, rate);
     foreground_pixels += foreground_[b];
   }
-  // Once per bin rather than once per pixel: at 4 bits a working frame has 14 pixels per bin.
   const float normaliser = 1.f / (foreground_pixels + kPriorPixels);
   const auto weight = static_cast<float>(params_.colour_weight);
   const float floor = sayFloor(), clip = static_cast<float>(params_.colour_clip);
@@ -274,9 +283,9 @@ void ColourModel::update(const cv::Mat& bgr, const cv::Mat& evidence,
     cell_bin_bg_[cell_bin_[b]] += background_[b];
   }
   if (!cells) return;
-  frame_odds_.resize(cell_bins);
+  frame_bg_per_fg_.resize(cell_bins);
   for (size_t bin = 0; bin < cell_bins; ++bin)
-    frame_odds_[bin] = (cell_bin_bg_[bin] + kBinFloor) / (cell_bin_fg_[bin] + kBinFloor);
+    frame_bg_per_fg_[bin] = (cell_bin_bg_[bin] + kBinFloor) / (cell_bin_fg_[bin] + kBinFloor);
   updateCells(rate);
 }
 

@@ -24,7 +24,8 @@ class ColourModel {
   // with_colour = evidence + colour_weight * clip(log(p_fg(c) / p_bg(c))) at every pixel of
   // `bgr` (8-bit BGR, evidence's size, CV_32F), the log ratio clipped to [max(-colour_clip,
   // log(1/4)), colour_clip]: a mover not seen yet may show any colour of the background;
-  // evidence alone before the first update. With cells, p_fg and p_bg are the pixel's cell's.
+  // evidence alone before the first update. With cells, p_fg and p_bg are the pixel's cell's:
+  // the cell's p of the colour's coarser cell bin times the frame's p of the colour within it.
   void addEvidence(const cv::Mat& bgr, const cv::Mat& evidence, cv::Mat* with_colour) const;
 
   // Learns the foreground from the pixels of `bgr` whose `evidence` (CV_32F, memory included)
@@ -59,7 +60,8 @@ class ColourModel {
   size_t cellEntry(int column, int y) const {
     return static_cast<size_t>(cell_row_[y] * cell_cols_ + column) << (3 * cell_bits_);
   }
-  // Adds the pixels update() counted in the cells to their decaying histograms.
+  // Adds the pixels update() counted in the cells to their decaying histograms, then works out
+  // what the cells say (setCellCorrections).
   void updateCells(float rate);
   // Every cell bin's log ratio in its cell less the frame's, into cell_correction_.
   void setCellCorrections();
@@ -84,7 +86,7 @@ class ColourModel {
   int cell_bits_;
   std::vector<std::uint16_t> cell_bin_;  // per bin: its cell bin
   // Per cell bin: the frame's p_fg and p_bg of it (sums of its bins'), and p_bg / p_fg.
-  std::vector<float> cell_bin_fg_, cell_bin_bg_, frame_odds_;
+  std::vector<float> cell_bin_fg_, cell_bin_bg_, frame_bg_per_fg_;
   cv::Size cells_size_;
   int cell_cols_ = 0, cell_rows_ = 0;
   // The first x of each column of cells (and the width after the last); each y's row of cells.

@@ -134,7 +134,7 @@ TEST(WorkLimit, TheCostliestDenseParametersAreLimitedOnAFrame) {
   p.flow_sample_step = 1;
   p.flow_texture_quantile = 0;
   p.flow_inlier_distance = 0.01;
-  p.colour_bits = 6;
+  p.colour_bits = 5;
   const WorkLimit limit = withinWorkLimit(p, {960, 540});
   EXPECT_EQ(limit.params.flow_sample_step, 5);  // ceil(sqrt(960 * 540 / 30000))
   EXPECT_EQ(limit.params.ransac_iterations, 482);  // 10^7 / (192 * 108)

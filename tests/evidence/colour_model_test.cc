@@ -174,8 +174,8 @@ TEST(ColourModel, AColourMeansWhatItMeansWhereItIsSeen) {
 // but another of the frame's bins (4 bits), is static at the right, green static between; the
 // cells of the middle see nothing confident. 160 x 80 pixels, cells of 40 x 40. The right-hand
 // cells learnt their cell bin as the background's, yet the frame's finer histograms still tell
-// the mover's red apart there: full say for it (a cell's say alone, 1.25 log(0.99 / 0.84) =
-// 0.2), none for the static red. Where the cells saw nothing, the frame's say, to the float.
+// the mover's red apart there: full say for it (a cell's say alone, 1.25 log(1.00 / 0.88) =
+// 0.15), none for the static red. Where the cells saw nothing, the frame's say, to the float.
 TEST(ColourModel, ColoursThatShareACellBinAreToldApartByTheFrame) {
   const cv::Scalar red208(0, 0, 208), red192(0, 0, 192);
   cv::Mat bgr(80, 160, CV_8UC3, cv::Scalar(kGreen[0], kGreen[1], kGreen[2]));
@@ -203,13 +203,13 @@ TEST(ColourModel, ColoursThatShareACellBinAreToldApartByTheFrame) {
     EXPECT_NEAR(evidenceOf(colour, 40)[0], evidenceOf(colour, 0)[0], 1e-5f);
 }
 
-// Cells of one pixel with 6 bits a channel (5 in a cell) would want 40,000 x 32,768 bins at 200
+// Cells of one pixel with 5 bits a channel (4 in a cell) would want 40,000 x 4,096 bins at 200
 // x 200: the cells grow until their tables fit (1 MB each), and the model still tells the
 // stripes' colours.
 TEST(ColourModel, CellsTooSmallForTheirTablesGrow) {
   Params params;
   params.colour_cell = 1;
-  params.colour_bits = 6;
+  params.colour_bits = 5;
   cv::Mat bgr(200, 200, CV_8UC3, cv::Scalar(kBlue[0], kBlue[1], kBlue[2]));
   bgr.colRange(0, 100).setTo(cv::Scalar(kRed[0], kRed[1], kRed[2]));
   cv::Mat evidence(bgr.size(), CV_32F, cv::Scalar(-2.5f));
