@@ -111,8 +111,7 @@ void ColourModel::addEvidence(const cv::Mat& bgr, const cv::Mat& evidence,
   }
   with_colour->create(evidence.size(), CV_32F);
   const bool cells = cell_cols_ > 0 && bgr.size() == cells_size_;
-  const auto weight = static_cast<float>(params_.colour_weight);
-  const float floor = sayFloor(), clip = static_cast<float>(params_.colour_clip);
+  const Say say = sayOf();
   for (int y = 0; y < bgr.rows; ++y) {
     const std::uint16_t* pixel_bins = rowBins(bgr.ptr<cv::Vec3b>(y), bgr.cols);
     const float* e = evidence.ptr<float>(y);
@@ -125,7 +124,7 @@ void ColourModel::addEvidence(const cv::Mat& bgr, const cv::Mat& evidence,
       const float* correction = cell_correction_.data() + cellEntry(column, y);
       for (int x = cell_column_start_[column]; x < cell_column_start_[column + 1]; ++x) {
         const float ratio = ratio_[pixel_bins[x]] + correction[cell_bin_[pixel_bins[x]]];
-        out[x] = e[x] + weight * std::clamp(ratio, floor, clip);
+        out[x] = e[x] + say(ratio);
       }
     }
   }
@@ -160,8 +159,18 @@ void ColourModel::layCells(cv::Size size) {
 }
 
 // Moving averages of the cells' counts, as the frame's foreground, and what they say.
-void ColourModel::updateCells(float rate) {
+void ColourModel::updateCells(float rate, float normaliser) {
   const size_t cell_bins = size_t{1} << (3 * cell_bits_);
+  // The frame's p_fg and p_bg of each cell bin, sums of its bins'.
+  cell_bin_fg_.assign(cell_bins, 0.f);
+  cell_bin_bg_.assign(cell_bins, 0.f);
+  for (size_t b = 0; b < foreground_.size(); ++b) {
+    cell_bin_fg_[cell_bin_[b]] += (foreground_[b] + kPriorPixels * background_[b]) * normaliser;
+    cell_bin_bg_[cell_bin_[b]] += background_[b];
+  }
+  frame_bg_per_fg_.resize(cell_bins);
+  for (size_t bin = 0; bin < cell_bins; ++bin)
+    frame_bg_per_fg_[bin] = (cell_bin_bg_[bin] + kBinFloor) / (cell_bin_fg_[bin] + kBinFloor);
   auto learn = [&](std::vector<float>* counts, const std::vector<float>& counted,
                    std::vector<float>* pixels) {
     for (size_t entry = 0; entry < counts->size(); ++entry)
@@ -204,8 +213,10 @@ float ColourModel::logRatio(float foreground, float background) {
   return std::log((foreground + kBinFloor) / (background + kBinFloor));
 }
 
-float ColourModel::sayFloor() const {
-  return std::max(-static_cast<float>(params_.colour_clip), std::log(kUnseenMoverShare));
+ColourModel::Say ColourModel::sayOf() const {
+  const auto clip = static_cast<float>(params_.colour_clip);
+  return {static_cast<float>(params_.colour_weight), std::max(-clip, std::log(kUnseenMoverShare)),
+          clip};
 }
 
 template <bool kCells>
@@ -268,25 +279,15 @@ void ColourModel::update(const cv::Mat& bgr, const cv::Mat& evidence,
     foreground_pixels += foreground_[b];
   }
   const float normaliser = 1.f / (foreground_pixels + kPriorPixels);
-  const auto weight = static_cast<float>(params_.colour_weight);
-  const float floor = sayFloor(), clip = static_cast<float>(params_.colour_clip);
+  const Say say = sayOf();
   evidence_.resize(bins);
   ratio_.resize(bins);
-  const size_t cell_bins = size_t{1} << (3 * cell_bits_);
-  cell_bin_fg_.assign(cell_bins, 0.f);
-  cell_bin_bg_.assign(cell_bins, 0.f);
   for (size_t b = 0; b < bins; ++b) {
     const float fg = (foreground_[b] + kPriorPixels * background_[b]) * normaliser;
     ratio_[b] = logRatio(fg, background_[b]);
-    evidence_[b] = weight * std::clamp(ratio_[b], floor, clip);
-    cell_bin_fg_[cell_bin_[b]] += fg;
-    cell_bin_bg_[cell_bin_[b]] += background_[b];
+    evidence_[b] = say(ratio_[b]);
   }
-  if (!cells) return;
-  frame_bg_per_fg_.resize(cell_bins);
-  for (size_t bin = 0; bin < cell_bins; ++bin)
-    frame_bg_per_fg_[bin] = (cell_bin_bg_[bin] + kBinFloor) / (cell_bin_fg_[bin] + kBinFloor);
-  updateCells(rate);
+  if (cells) updateCells(rate, normaliser);
 }
 
 void ColourModel::reset() {

@@ -7,6 +7,7 @@
 // interior, a flat patch the flow cannot follow).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -61,14 +62,20 @@ class ColourModel {
     return static_cast<size_t>(cell_row_[y] * cell_cols_ + column) << (3 * cell_bits_);
   }
   // Adds the pixels update() counted in the cells to their decaying histograms, then works out
-  // what the cells say (setCellCorrections).
-  void updateCells(float rate);
+  // what the cells say (setCellCorrections). `normaliser`: the frame's foreground's, as update()
+  // draws it towards the background.
+  void updateCells(float rate, float normaliser);
   // Every cell bin's log ratio in its cell less the frame's, into cell_correction_.
   void setCellCorrections();
   // log(p_fg / p_bg), kept off infinity where a bin was never seen.
   static float logRatio(float foreground, float background);
-  // The least colour may say, before colour_weight: max(-colour_clip, log(kUnseenMoverShare)).
-  float sayFloor() const;
+  // What colour says for a log ratio: colour_weight times it clipped to [floor, clip], the floor
+  // max(-colour_clip, log(kUnseenMoverShare)).
+  struct Say {
+    float weight, floor, clip;
+    float operator()(float ratio) const { return weight * std::clamp(ratio, floor, clip); }
+  };
+  Say sayOf() const;
 
   Params params_;
   // Per channel and 8-bit level, its bits of the bin: the first channel's are the highest.
