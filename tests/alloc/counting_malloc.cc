@@ -1,5 +1,6 @@
 #include "alloc/counting_malloc.h"
 
+#include <atomic>
 #include <cerrno>
 #include <cstddef>
 
@@ -12,11 +13,12 @@ void* __libc_memalign(std::size_t alignment, std::size_t size);
 
 namespace {
 
-thread_local bool t_counting = false;
-thread_local std::int64_t t_count = 0;
+// Process-wide, so that what OpenCV's worker threads allocate for a call counts too.
+std::atomic<bool> g_counting{false};
+std::atomic<std::int64_t> g_count{0};
 
 void counted() {
-  if (t_counting) ++t_count;
+  if (g_counting.load(std::memory_order_relaxed)) g_count.fetch_add(1, std::memory_order_relaxed);
 }
 
 }  // namespace
@@ -59,12 +61,12 @@ int posix_memalign(void** pointer, std::size_t alignment, std::size_t size) {
 namespace movseg::test {
 
 CountAllocations::CountAllocations() {
-  t_count = 0;
-  t_counting = true;
+  g_count = 0;
+  g_counting = true;
 }
 
-CountAllocations::~CountAllocations() { t_counting = false; }
+CountAllocations::~CountAllocations() { g_counting = false; }
 
-std::int64_t CountAllocations::count() const { return t_count; }
+std::int64_t CountAllocations::count() const { return g_count; }
 
 }  // namespace movseg::test

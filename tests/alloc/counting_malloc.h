@@ -1,4 +1,4 @@
-// Counts the heap allocations made on the calling thread while a CountAllocations is alive, by
+// Counts the heap allocations made on any thread while a CountAllocations is alive, by
 // standing in for malloc and its kin (operator new and cv::fastMalloc end there). Linked into
 // its own test program only: sanitizers replace the allocator themselves.
 #pragma once

@@ -35,13 +35,19 @@ std::string bytesOf(const std::string& path) {
   return bytes.str();
 }
 
-// The same files in `a` and `b`, byte for byte.
+// The same files in `a` and `b` (`count` entries, folders among them), byte for byte, folders
+// compared the same way.
 void expectSameFiles(const std::string& a, const std::string& b, size_t count) {
   const std::vector<std::string> files = test::filesIn(a);
   ASSERT_EQ(files.size(), count) << a;
   EXPECT_EQ(files, test::filesIn(b));
   for (const std::string& name : files) {
-    EXPECT_EQ(bytesOf(a + "/" + name), bytesOf(b + "/" + name)) << b << "/" << name;
+    const std::string in_a = a + "/" + name, in_b = b + "/" + name;
+    if (fs::is_directory(in_a)) {
+      expectSameFiles(in_a, in_b, test::filesIn(in_a).size());
+      continue;
+    }
+    EXPECT_EQ(bytesOf(in_a), bytesOf(in_b)) << in_b;
   }
 }
 
@@ -141,15 +147,16 @@ TEST(SegmentCli, CorruptImageInAFolderIsNamed) {
   EXPECT_FALSE(fs::exists(dir / "out/00001.png"));
 }
 
-// --ignore: white where nothing moves, a JPEG's near-black ringing not ignored; the manifest
-// records it. An image that cannot be read stops the run before anything is written.
+// --ignore: white (above 127) where nothing moves, 127 and below (a JPEG's near-black ringing)
+// not ignored, the image scaled to the frames; the manifest records it. An image that cannot be
+// read stops the run before anything is written.
 TEST(SegmentCli, IgnoreLeavesARegionOutOfEveryMask) {
   const test::TempDir dir;
   const std::string frames = synthClip(dir, 6);
   ASSERT_EQ(test::runCli("segment " + frames + " -o " + dir / "plain").exit_code, 0);
-  cv::Mat region(240, 320, CV_8U, cv::Scalar(20));  // dark but not black: not ignored
-  const cv::Rect left(0, 0, 160, 240);
-  region(left).setTo(255);
+  cv::Mat region(120, 160, CV_8U, cv::Scalar(127));  // half the frames' size: scaled
+  region(cv::Rect(0, 0, 80, 120)).setTo(128);
+  const cv::Rect left(0, 0, 160, 240);  // in the frames
   ASSERT_TRUE(cv::imwrite(dir / "region.png", region));
   const test::CommandResult r =
       test::runCli("segment " + frames + " -o " + dir / "out" + " --ignore " + dir / "region.png");
@@ -248,17 +255,19 @@ TEST(SegmentCli, MixedFrameTypesAndSizesAreAccepted) {
   EXPECT_EQ(resets, (std::vector<bool>{false, false, false, false, true}));
 }
 
-// --threads 2 on one input: the next frame is analysed while this one is cut; the same masks.
+// --threads 2 on one input: the next frame is analysed while this one is cut; the same masks
+// and debug pictures.
 TEST(SegmentCli, TwoThreadsOnOneInputWriteTheOneThreadFiles) {
   const test::TempDir dir;
   const std::string frames = synthClip(dir, 8);
   for (const char* threads : {"1", "2"}) {
     const test::CommandResult r = test::runCli("segment " + frames + " -o " + dir / threads +
-                                               " --threads " + threads);
+                                               " --debug --threads " + threads);
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("segment: 8 frames"), std::string::npos) << r.output;
   }
-  expectSameFiles(dir / "1", dir / "2", 8 + 1);  // and the run manifest
+  expectSameFiles(dir / "1", dir / "2", 8 + 2);  // and the run manifest and debug/
+  EXPECT_EQ(test::filesIn(dir / "1/debug/unary").size(), 7u);  // from the first pair
 }
 
 // Several inputs, N at a time: each input's outputs (--stats and --overlay named in its folder)

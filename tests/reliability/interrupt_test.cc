@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "io/video_decoder.h"
 #include "reliability/reliability_fixture.h"
 #include "test_support.h"
 
@@ -96,8 +97,9 @@ test::TempDir* Interrupt::clip_ = nullptr;
 TEST_P(Interrupt, MidwayLeavesCompleteFilesAndExits130) {
   test::TempDir dir;
   const std::string out = dir / "out", stats = dir / "out/stats.jsonl";
+  const std::string overlay = dir / "overlay.mp4";
   const pid_t pid = test::startCli({"segment", *clip_ / "clip/frames", "-o", out, "--stats", stats,
-                                    "-q", "--threads", GetParam().threads},
+                                    "--overlay", overlay, "-q", "--threads", GetParam().threads},
                                    dir / "log.txt");
   ASSERT_GT(pid, 0);
   // The sixth mask exists: the run is midway, its signal handler installed.
@@ -128,6 +130,12 @@ TEST_P(Interrupt, MidwayLeavesCompleteFilesAndExits130) {
   const nlohmann::json manifest = nlohmann::json::parse(textOf(out + "/movseg-run.json"));
   EXPECT_EQ(manifest.at("frames_done").get<int>(), masks);
   EXPECT_FALSE(manifest.at("finished").get<bool>());
+  // The overlay video is closed, not cut off: it plays, one frame per mask, as its index says.
+  VideoDecoder video(overlay, {});
+  EXPECT_EQ(video.expectedFrames(), masks);
+  int played = 0;
+  for (cv::Mat frame; video.read(&frame);) ++played;
+  EXPECT_EQ(played, masks);
 }
 
 std::string caseName(const ::testing::TestParamInfo<Case>& info) {

@@ -21,7 +21,8 @@ TEST(LongRun, ResidentMemoryStaysFlatOver600Frames) {
 #endif
   const LongRunReport r = runLongStream(600, 100, 60);
   ASSERT_GT(r.warm_kib, 0) << "no /proc/self/status";
-  EXPECT_LT(r.end_kib - r.warm_kib, 3 * 1024) << "RSS " << r.warm_kib << " KiB after 100 frames, "
+  // Measured +4 KiB; a leak of a kilobyte a frame (20 MB over make long-run's 20,000) fails.
+  EXPECT_LT(r.end_kib - r.warm_kib, 512) << "RSS " << r.warm_kib << " KiB after 100 frames, "
                                               << r.end_kib << " KiB after 600";
   EXPECT_EQ(r.motion_fallbacks, 0);
 }

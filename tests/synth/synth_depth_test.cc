@@ -384,6 +384,7 @@ TEST(SynthDepth, StillCameraSeesTheObjectsOwnMotion) {
   SynthOptions options = depthOptions(SynthCamera::kStatic, 40, 6);
   options.objects = 3;
   const DepthScene scene = makeDepthScene(options);
+  ASSERT_EQ(scene.sprites.size(), 3u);
   for (const Sprite& sprite : scene.sprites) {
     const SynthObject& object = sprite.object;
     std::optional<double> raise;
