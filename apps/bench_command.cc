@@ -352,8 +352,12 @@ void runBench(const BenchOptions& options) {
                "run (reading and writing included).\n"
             << (throughput ? formatThroughput(*throughput) : "");
   if (!options.json_file.empty()) {
-    nlohmann::json report{{"cpu", cpuModel()}, {"size", options.size}, {"threads", options.threads},
-                          {"rows", rowsJson(rows)}, {"means", rowsJson(means)}};
+    // The settings every method ran with (each its own `method`), as a run's manifest has them.
+    nlohmann::json settings = paramSettings(options.params, {"method"});
+    if (!options.ignore.empty()) settings["ignore"] = options.ignore;
+    nlohmann::json report{{"cpu", cpuModel()},         {"size", options.size},
+                          {"threads", options.threads}, {"settings", settings},
+                          {"rows", rowsJson(rows)},     {"means", rowsJson(means)}};
     if (throughput) {
       report["throughput"] = {{"method", throughput->method},
                               {"one_thread_fps", throughput->one_thread},

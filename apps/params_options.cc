@@ -83,4 +83,12 @@ void addParamsOptions(CLI::App* command, Params* params, const std::set<std::str
       ->group("Parameters (include/movseg/params.def)");
 }
 
+nlohmann::json paramSettings(const Params& params, const std::set<std::string>& except) {
+  nlohmann::json settings = nlohmann::json::object();
+  for (const FieldInfo& field : paramFields()) {
+    if (except.count(field.name) == 0) settings[field.name] = toText(paramValue(params, field.name));
+  }
+  return settings;
+}
+
 }  // namespace movseg::cli

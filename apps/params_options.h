@@ -1,6 +1,6 @@
 // Every movseg::Params field as a command-line option, generated from the field table
 // (movseg/params.def through movseg/fields.h): --lk-window 11, --static-camera, ..., and
-// --set name=value for the same. Shared by segment, demo and bench.
+// --set name=value for the same. Shared by segment, demo and bench, as is their record.
 #pragma once
 
 #include <charconv>
@@ -9,6 +9,7 @@
 #include <string>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "movseg/params.h"
 
@@ -31,5 +32,9 @@ inline const CLI::Validator kSeed(
 // those too. Values are parsed and range-checked by movseg::setParam as they are read, so a bad
 // value is refused by name before anything runs.
 void addParamsOptions(CLI::App* command, Params* params, const std::set<std::string>& except = {});
+
+// Every field of `params` but those named in `except`, by name, as text (movseg::toText): what
+// a run's manifest and bench's JSON record of the settings.
+nlohmann::json paramSettings(const Params& params, const std::set<std::string>& except = {});
 
 }  // namespace movseg::cli

@@ -35,6 +35,7 @@
 #include "movseg/fields.h"
 #include "movseg/segmenter.h"
 #include "movseg/stream_segmenter.h"
+#include "params_options.h"
 #include "progress.h"
 
 namespace movseg::cli {
@@ -160,10 +161,7 @@ cv::Mat readIgnoredRegion(const std::string& path) {
 
 // The manifest's record of a run: its input and every setting that changes a mask.
 nlohmann::json runIdentity(const SegmentOptions& options) {
-  nlohmann::json settings;
-  for (const FieldInfo& field : paramFields()) {
-    settings[field.name] = toText(paramValue(options.params, field.name));
-  }
+  nlohmann::json settings = cli::paramSettings(options.params);
   if (!options.resize.empty()) {
     settings["size"] = std::to_string(options.resize.width) + "x" + std::to_string(options.resize.height);
   }
