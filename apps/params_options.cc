@@ -86,7 +86,8 @@ void addParamsOptions(CLI::App* command, Params* params, const std::set<std::str
 nlohmann::json paramSettings(const Params& params, const std::set<std::string>& except) {
   nlohmann::json settings = nlohmann::json::object();
   for (const FieldInfo& field : paramFields()) {
-    if (except.count(field.name) == 0) settings[field.name] = toText(paramValue(params, field.name));
+    if (except.count(field.name) > 0) continue;
+    settings[field.name] = toText(paramValue(params, field.name));
   }
   return settings;
 }
