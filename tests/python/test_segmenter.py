@@ -230,20 +230,23 @@ def test_ran_beside_sees_a_call_that_holds_the_gil():
     assert ran_beside(lambda: cv2.resize(big, (2048, 1536), interpolation=cv2.INTER_AREA))
 
 
-@pytest.mark.parametrize("api", ["process", "push"])
+@pytest.mark.parametrize("api", ["process", "push", "push on 2 threads", "flush"])
 def test_a_call_lets_other_python_threads_run(frames, api):
     # Frames large enough that the call (about 70 ms) outlasts by far the waking of the thread
     # beside it, even on a busy machine: a call shorter than that would return before the
-    # thread could take the GIL.
+    # thread could take the GIL. On two threads push and flush wait for the analysis in flight.
     big = [cv2.resize(frame, (4096, 3072)) for frame in frames[:3]]
     if api == "process":
         segmenter = movseg.Segmenter()
         segmenter.process(big[0])
         assert ran_beside(lambda: segmenter.process(big[1]))
+        return
+    stream = movseg.StreamSegmenter(threads=2 if api == "push on 2 threads" else 1)
+    stream.push(big[0])
+    stream.push(big[1])
+    if api == "flush":
+        assert ran_beside(stream.flush)
     else:
-        stream = movseg.StreamSegmenter(threads=1)
-        stream.push(big[0])
-        stream.push(big[1])
         assert ran_beside(lambda: stream.push(big[2]))
 
 
