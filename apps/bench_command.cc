@@ -1,11 +1,11 @@
 // movseg bench DATA [--methods dense,paper,diff,mog2,mog2-comp] [--size WxH] [--threads N]
-//                   [--json FILE] [--html FILE]
+//                   [--ignore IMAGE] [--json FILE] [--html FILE] [--<parameter> VALUE ...]
+//                   [--set name=value ...]
 // Every method on every sequence of DATA: accuracy against the ground truth and speed, in one
 // table (the README's tables come from here); with --threads, what threads add to throughput.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>

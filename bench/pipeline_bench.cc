@@ -1,7 +1,8 @@
 // Timings of the paper's stages on synthetic frame pairs at 320x240 and 640x480, of `dense`'s
 // edge snap beside the guided filter of OpenCV's ximgproc, of `dense`'s flow beside OpenCV's DIS,
-// and of every method's whole pipeline on synthetic and DAVIS clips beside OpenCV MOG2 (method
-// mog2).
+// of every method's whole pipeline on synthetic and DAVIS clips beside OpenCV MOG2 (method
+// mog2), and of DAVIS's boundary F of an 854x480 mask pair beside the two whole-frame dilations
+// it replaced.
 //   build/bench/movseg_bench [--benchmark_filter=...]
 // Each paper stage runs on the output of the previous ones for the same pair, exactly as in the
 // paper's pipeline (src/pipelines/paper.cc), so the stage times add up to the pipeline's. The

@@ -19,7 +19,6 @@ where a post stands in front of them (render_dolly: every pixel's ray meets the 
 """
 import argparse
 import math
-import os
 import sys
 from pathlib import Path
 

@@ -21,8 +21,6 @@ class GeodesicGrid {
   // images and one is close (docs/design.md). Without seeds every distance is +infinity.
   cv::Mat distanceFrom(const std::vector<cv::Point>& seeds, int max_sweeps) const;
 
-  cv::Size size() const { return size_; }
-
  private:
   // Each returns whether any distance decreased.
   bool forwardPass(cv::Mat& distance) const;

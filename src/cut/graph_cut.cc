@@ -1,10 +1,5 @@
 #include "cut/graph_cut.h"
 
-#include <cmath>
-#include <limits>
-
-#include <opencv2/imgproc.hpp>
-
 #include "cut/geodesic.h"
 #include "cut/grid_energy.h"
 #include "cut/max_flow.h"

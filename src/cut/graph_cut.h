@@ -13,7 +13,8 @@ namespace movseg {
 struct CutResult {
   cv::Mat mask;        // CV_8U 0/255
   cv::Mat confidence;  // u(x) of eq. (10), CV_32F (for the debug picture)
-  int graph_nodes = 0; // pixels left to the max-flow after the exact reduction
+  int graph_nodes = 0; // max-flow nodes left after the exact reduction (with cut_refine: the
+                       // 2x2 blocks', then the band's pixels')
 };
 
 class GridMaxFlow;

@@ -6,8 +6,6 @@
 #include <stdexcept>
 #include <vector>
 
-#include <opencv2/imgproc.hpp>
-
 namespace movseg {
 namespace {
 

@@ -5,7 +5,6 @@
 #include <cstdint>
 
 #include <opencv2/core/hal/intrin.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include "core/quantile.h"
 

@@ -481,13 +481,6 @@ void DisFlow::prepareLevel(const cv::Mat& grey, DisFrame::Level* level) {
   }
 }
 
-void DisFlow::calc(const cv::Mat& from, const cv::Mat& to, const cv::Mat& initial,
-                   cv::Mat* flow) {
-  prepare(from, &scratch_from_);
-  prepare(to, &scratch_to_);
-  calc(scratch_from_, scratch_to_, initial, flow);
-}
-
 void DisFlow::calc(const DisFrame& from, const DisFrame& to, const cv::Mat& initial,
                    cv::Mat* flow) {
   CV_Assert(!from.empty() && from.size() == to.size() &&

@@ -83,9 +83,6 @@ class DisFlow {
   // patch as OpenCV tries the flow it is given (a warm start).
   void calc(const DisFrame& from, const DisFrame& to, const cv::Mat& initial, cv::Mat* flow);
 
-  // The same from two images, prepared here; for single pairs and tests.
-  void calc(const cv::Mat& from, const cv::Mat& to, const cv::Mat& initial, cv::Mat* flow);
-
   // How far from a pixel, in the frame's pixels, the image shapes its flow: the side of a patch
   // at the finest scale, any of which covering the pixel has a say in its flow.
   int reach() const;
@@ -112,7 +109,6 @@ class DisFlow {
   std::vector<float> blocks_, row_sums_, totals_, running_;  // the structure tensors' sums
   std::vector<float> resampled_rows_[2];                     // upsample's rows along x
   std::vector<ResizeTaps> x_taps_;
-  DisFrame scratch_from_, scratch_to_;
 };
 
 // OpenCV's DIS with the settings DisFlow follows: the reference it is measured against.

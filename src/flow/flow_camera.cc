@@ -210,14 +210,6 @@ void gridSamples(const cv::Mat& grey, int step, const cv::Mat& ignored,
   }
 }
 
-FlowCamera fitFlowCamera(const cv::Mat& flow, const std::vector<GridSample>& grid,
-                         const cv::Mat& moving, const Params& params, cv::RNG& rng,
-                         const cv::Matx33d* previous_model) {
-  FlowCamera camera;
-  FlowCameraFitter(params).fit(flow, grid, moving, rng, previous_model, &camera);
-  return camera;
-}
-
 namespace {
 
 RansacOptions ransacOptions(const Params& params) {

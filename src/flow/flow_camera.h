@@ -38,25 +38,21 @@ struct GridSample {
 void gridSamples(const cv::Mat& grey, int step, const cv::Mat& ignored,
                  std::vector<GridSample>* samples);
 
-// Samples `flow` (CV_32FC2, current -> previous) at the `grid` samples whose texture is above
-// its lower `params.flow_texture_quantile` — flat pixels carry no flow information — and fits a
-// homography to those not marked in `moving` (CV_8U, above 127; may be empty), unless that would
-// leave too few. With `params.static_camera` the model stays the identity. With
-// `params.parallax`, then the epipole, when enough of those samples are off the plane (more than
-// twice the inlier distance) and most of them agree on one. `previous_model`, the last pair's
-// when there is one, is scored before any sample is drawn (a warm start, as the paper's camera
-// fit has): a camera's motion changes little from one pair to the next.
-FlowCamera fitFlowCamera(const cv::Mat& flow, const std::vector<GridSample>& grid,
-                         const cv::Mat& moving, const Params& params, cv::RNG& rng,
-                         const cv::Matx33d* previous_model = nullptr);
-
-// fitFlowCamera in buffers kept from one pair to the next, its RANSACs' among them: at a fixed
-// frame size a fit allocates nothing once a few pairs have been fitted.
+// The camera of a stream's pairs, in buffers kept from one pair to the next, its RANSACs' among
+// them: at a fixed frame size a fit allocates nothing once a few pairs have been fitted.
 class FlowCameraFitter {
  public:
   explicit FlowCameraFitter(const Params& params);
 
-  // fitFlowCamera's camera, written over `camera` (whose vectors are reused).
+  // Samples `flow` (CV_32FC2, current -> previous) at the `grid` samples whose texture is above
+  // its lower `params.flow_texture_quantile` — flat pixels carry no flow information — and fits
+  // a homography to those not marked in `moving` (CV_8U, above 127; may be empty), unless that
+  // would leave too few. With `params.static_camera` the model stays the identity. With
+  // `params.parallax`, then the epipole, when enough of those samples are off the plane (more
+  // than twice the inlier distance) and most of them agree on one. `previous_model`, the last
+  // pair's when there is one (else null), is scored before any sample is drawn (a warm start,
+  // as the paper's camera fit has): a camera's motion changes little from one pair to the next.
+  // Written over `camera`, whose vectors are reused.
   void fit(const cv::Mat& flow, const std::vector<GridSample>& grid, const cv::Mat& moving,
            cv::RNG& rng, const cv::Matx33d* previous_model, FlowCamera* camera);
 

@@ -3,7 +3,6 @@
 #include <cmath>
 
 #include <Eigen/Eigenvalues>
-#include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "motion/model.h"

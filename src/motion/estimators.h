@@ -1,8 +1,8 @@
 // Camera-model estimators for the RANSAC loop of motion/ransac.h (its header describes the
 // interface): each knows its minimal sample size, how to fit a model to a minimal sample, how to
-// fit one to many points by least squares, and its residuals. Models are 3x3 matrices mapping
-// x (previous frame) to y (current frame); the residual is the squared transfer error
-// |model(x) - y|^2.
+// fit one to many points by least squares, and its residuals. Camera models (affine,
+// homography) are 3x3 matrices mapping x to y, with the squared transfer error |model(x) - y|^2
+// as residual; EpipoleEstimator's model is a point (below).
 #pragma once
 
 #include <vector>

@@ -1,7 +1,7 @@
 // One RANSAC loop for every model, split as COLMAP splits it (src/colmap/optim/ransac.h): an
 // Estimator fits models and measures residuals, a Sampler draws the minimal samples, a
 // SupportMeasurer scores hypotheses; the loop keeps the best and refits it by least squares.
-// A new model (a parallax model, say) is one more Estimator class:
+// A new model is one more Estimator class (as EpipoleEstimator was):
 //
 //   struct Estimator {
 //     using Model = ...;
@@ -69,8 +69,8 @@ class Ransac {
     iy_.reserve(points);
   }
 
-  // x[i] (previous frame) corresponds to y[i] (current frame); both lie in an image of
-  // `image_size`. `initial`, when given, is scored before any sample is drawn (a warm start).
+  // x[i] corresponds to y[i] (previous and current frame for paper; current and previous for
+  // dense's flow); both lie in an image of `image_size`. `initial`, when given, is scored before any sample is drawn (a warm start).
   // The report is the loop's own, valid until the next call: its buffers, and the sampler's
   // and the measurer's, are reused, so that a Ransac kept from frame to frame allocates nothing
   // once it has seen as many points.

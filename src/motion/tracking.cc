@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
 
 namespace movseg {

@@ -1,7 +1,6 @@
 // The field tables (movseg/params.def, movseg/diagnostics.def) and what is generated from them:
 // Params::check(), setParam's parsing, the names and docs every binding shows.
 #include <algorithm>
-#include <cmath>
 #include <iomanip>
 #include <limits>
 #include <set>

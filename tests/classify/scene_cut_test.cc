@@ -2,7 +2,6 @@
 // (docs/reliability.md has the figure for all fifteen; skipped without the data).
 #include "classify/scene_cut.h"
 
-#include <filesystem>
 #include <string>
 #include <vector>
 

@@ -1,6 +1,5 @@
 // Ground-truth layouts and conventions, on tiny mask folders written to a temp dir.
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
 #include <string>

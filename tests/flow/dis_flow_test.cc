@@ -2,7 +2,6 @@
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <limits>
 #include <string>
 #include <vector>
@@ -15,6 +14,15 @@
 
 namespace movseg {
 namespace {
+
+// DisFlow::calc on two images, each prepared here.
+void calcImages(DisFlow* dis, const cv::Mat& from, const cv::Mat& to, const cv::Mat& initial,
+                cv::Mat* flow) {
+  DisFrame prepared_from, prepared_to;
+  dis->prepare(from, &prepared_from);
+  dis->prepare(to, &prepared_to);
+  dis->calc(prepared_from, prepared_to, initial, flow);
+}
 
 // movseg's finest scale (params.def: flow_finest_scale).
 constexpr int kFinest = 1;
@@ -69,7 +77,7 @@ cv::Mat openCvFlow(const cv::Mat& from, const cv::Mat& to, const cv::Mat& initia
 cv::Mat ourFlow(const cv::Mat& from, const cv::Mat& to, const cv::Mat& initial) {
   DisFlow dis(kFinest);
   cv::Mat flow;
-  dis.calc(from, to, initial, &flow);
+  calcImages(&dis, from, to, initial, &flow);
   return flow;
 }
 
@@ -200,8 +208,8 @@ TEST(DisFlow, TheInitialFlowMayBeTheOutput) {
   const cv::Mat initial = warpFlow(cv::Matx23d(1, 0, 2.5, 0, 1, 1.5), size);
   DisFlow dis(kFinest);
   cv::Mat separate, in_place = initial.clone();
-  dis.calc(current, previous, initial, &separate);
-  dis.calc(current, previous, in_place, &in_place);
+  calcImages(&dis, current, previous, initial, &separate);
+  calcImages(&dis, current, previous, in_place, &in_place);
   EXPECT_EQ(cv::norm(separate, in_place, cv::NORM_INF), 0.0);
 }
 

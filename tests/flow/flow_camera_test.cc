@@ -14,6 +14,15 @@
 namespace movseg {
 namespace {
 
+// One pair's camera, by a fitter of its own.
+FlowCamera fitFlowCamera(const cv::Mat& flow, const std::vector<GridSample>& grid,
+                         const cv::Mat& moving, const Params& params, cv::RNG& rng,
+                         const cv::Matx33d* previous_model = nullptr) {
+  FlowCamera camera;
+  FlowCameraFitter(params).fit(flow, grid, moving, rng, previous_model, &camera);
+  return camera;
+}
+
 // The texture measured at the samples alone is OpenCV's, inside the frame and on its borders
 // and corners, where both reflect the image.
 TEST(FlowCamera, TextureAtAPixelIsCornerMinEigenValsThere) {

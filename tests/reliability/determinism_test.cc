@@ -1,6 +1,5 @@
 // Equal input and seed give bit-identical masks across OpenCV thread counts, concurrent
 // Segmenters and separate CLI processes (run after run: contract_test.cc, for every method).
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <thread>

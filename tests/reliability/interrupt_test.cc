@@ -11,7 +11,6 @@
 #include <sstream>
 #include <string>
 #include <thread>
-#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -134,7 +133,7 @@ TEST_P(Interrupt, MidwayLeavesCompleteFilesAndExits130) {
   VideoDecoder video(overlay, {});
   EXPECT_EQ(video.expectedFrames(), masks);
   int played = 0;
-  for (cv::Mat frame; video.read(&frame);) ++played;
+  for (cv::Mat picture; video.read(&picture);) ++played;
   EXPECT_EQ(played, masks);
 }
 

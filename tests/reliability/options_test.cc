@@ -1,10 +1,7 @@
 // Out-of-range parameters and options are refused with one clear line, never run (an absurd
 // value could otherwise make a frame that never ends).
-#include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <functional>
-#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
