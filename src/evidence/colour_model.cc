@@ -165,7 +165,7 @@ void ColourModel::updateCells(float rate, float normaliser) {
   cell_bin_fg_.assign(cell_bins, 0.f);
   cell_bin_bg_.assign(cell_bins, 0.f);
   for (size_t b = 0; b < foreground_.size(); ++b) {
-    cell_bin_fg_[cell_bin_[b]] += (foreground_[b] + kPriorPixels * background_[b]) * normaliser;
+    cell_bin_fg_[cell_bin_[b]] += frameForeground(b, normaliser);
     cell_bin_bg_[cell_bin_[b]] += background_[b];
   }
   frame_bg_per_fg_.resize(cell_bins);
@@ -207,6 +207,10 @@ void ColourModel::setCellCorrections() {
   cv::Mat corrections(1, static_cast<int>(cell_correction_.size()), CV_32F,
                       cell_correction_.data());
   cv::log(corrections, corrections);
+}
+
+float ColourModel::frameForeground(size_t bin, float normaliser) const {
+  return (foreground_[bin] + kPriorPixels * background_[bin]) * normaliser;
 }
 
 float ColourModel::logRatio(float foreground, float background) {
@@ -283,8 +287,7 @@ void ColourModel::update(const cv::Mat& bgr, const cv::Mat& evidence,
   evidence_.resize(bins);
   ratio_.resize(bins);
   for (size_t b = 0; b < bins; ++b) {
-    const float fg = (foreground_[b] + kPriorPixels * background_[b]) * normaliser;
-    ratio_[b] = logRatio(fg, background_[b]);
+    ratio_[b] = logRatio(frameForeground(b, normaliser), background_[b]);
     evidence_[b] = say(ratio_[b]);
   }
   if (cells) updateCells(rate, normaliser);

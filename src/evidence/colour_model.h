@@ -67,6 +67,9 @@ class ColourModel {
   void updateCells(float rate, float normaliser);
   // Every cell bin's log ratio in its cell less the frame's, into cell_correction_.
   void setCellCorrections();
+  // The frame's p_fg of `bin`: the movers' counts drawn towards the background by kPriorPixels,
+  // times `normaliser`, 1 / (the movers' pixels + kPriorPixels).
+  float frameForeground(size_t bin, float normaliser) const;
   // log(p_fg / p_bg), kept off infinity where a bin was never seen.
   static float logRatio(float foreground, float background);
   // What colour says for a log ratio: colour_weight times it clipped to [floor, clip], the floor

@@ -70,7 +70,8 @@ class Ransac {
   }
 
   // x[i] corresponds to y[i] (previous and current frame for paper; current and previous for
-  // dense's flow); both lie in an image of `image_size`. `initial`, when given, is scored before any sample is drawn (a warm start).
+  // dense's flow); both lie in an image of `image_size`. `initial`, when given, is scored
+  // before any sample is drawn (a warm start).
   // The report is the loop's own, valid until the next call: its buffers, and the sampler's
   // and the measurer's, are reused, so that a Ransac kept from frame to frame allocates nothing
   // once it has seen as many points.

@@ -1,7 +1,8 @@
 // The pipelines behind movseg::Segmenter, one per Params::method, made by one factory that
 // switches on the method (as Ceres' LinearSolver::Create switches on its options). Each pipeline
 // is one file that reads like its method's flow chart and calls the stages below it (motion/,
-// classify/, cut/, flow/, evidence/, refine/); no stage knows which pipeline calls it. Adding a method: docs/design.md.
+// classify/, cut/, flow/, evidence/, refine/); no stage knows which pipeline calls it. Adding a
+// method: docs/design.md.
 #pragma once
 
 #include <map>

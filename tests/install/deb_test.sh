@@ -39,8 +39,9 @@ module_version=$(python -c 'import movseg; print("movseg", movseg.__version__)')
 [ "$module_version" = "$("$cli" --version)" ] || fail "$module_version, but $("$cli" --version)"
 python -m movseg segment "$root/clip/frames" -o "$root/masks-python" -q
 # The module passes its arguments on: the same masks, of which the last shows the movers.
-/usr/bin/python3 -c "import cv2, sys; sys.exit(cv2.countNonZero(cv2.imread('$root/masks/00003.png', 0)) == 0)" ||
-  fail "the packaged CLI found nothing moving on the clip's last frame"
+last_mask=$root/masks/00003.png
+/usr/bin/python3 -c "import cv2, sys; sys.exit(cv2.countNonZero(cv2.imread(sys.argv[1], 0)) == 0)" \
+  "$last_mask" || fail "the packaged CLI found nothing moving on the clip's last frame"
 for mask in "$root/masks"/*.png; do
   cmp -s "$mask" "$root/masks-python/$(basename "$mask")" ||
     fail "python -m movseg wrote another $(basename "$mask") than the CLI"
