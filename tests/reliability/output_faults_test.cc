@@ -4,10 +4,12 @@
 #include <poll.h>
 #include <signal.h>
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -19,6 +21,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "io/atomic_write.h"
 #include "io/overlay.h"
 #include "io/video_decoder.h"
 #include "reliability/reliability_fixture.h"
@@ -397,8 +400,8 @@ class FifoReader {
   std::thread thread_;
 };
 
-// A FIFO, a device (not tested here: /dev nodes are everyone's) and a symlink stay what they
-// are: the FIFO and the device get the bytes, the symlink's target is replaced.
+// A FIFO, a device and a symlink stay what they are: the FIFO and the device get the bytes, the
+// symlink's target is replaced.
 TEST_F(OutputFaults, AFifoOrASymlinkAsOutputIsWrittenThroughNotReplaced) {
   const std::string fifo = dir_ / "stats.fifo";
   ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
@@ -432,6 +435,36 @@ TEST_F(OutputFaults, AFifoOrASymlinkAsOutputIsWrittenThroughNotReplaced) {
   // The masks scored against themselves.
   EXPECT_EQ(nlohmann::json::parse(std::ifstream(dir_ / "reports/scores.json")).at("mean").at("J"),
             1.0);
+  EXPECT_FALSE(anyPartFile(dir_.path()));
+}
+
+// A device as every kind of output (a text file grown line by line, a JSON file, a mask): written
+// in place, the node itself left as it was. The device is a node of the test's own with
+// /dev/null's numbers, so that a regression replaces nothing anyone else uses.
+TEST_F(OutputFaults, ADeviceAsOutputIsWrittenInPlaceNotReplaced) {
+  const std::string device = dir_ / "null.png";  // a mask is encoded by its extension
+  if (mknod(device.c_str(), S_IFCHR | 0666, makedev(1, 3)) != 0) {
+    GTEST_SKIP() << "cannot make a device node here: " << std::strerror(errno);
+  }
+  const auto expectTheSameDevice = [&] {
+    struct stat info {};
+    ASSERT_EQ(lstat(device.c_str(), &info), 0);
+    EXPECT_TRUE(S_ISCHR(info.st_mode));
+    EXPECT_EQ(info.st_rdev, makedev(1, 3));
+  };
+  const test::CommandResult stats =
+      test::runCli("segment " + frames() + " -o " + dir_ / "out" + " -q --stats " + device);
+  EXPECT_EQ(stats.exit_code, 0) << stats.output;
+  EXPECT_TRUE(fs::exists(dir_ / "out/00011.png"));
+  expectTheSameDevice();
+  const test::CommandResult json = test::runCli("eval " + (*clip_ / "clip/masks") + " " +
+                                                (*clip_ / "clip/masks") + " --json " + device);
+  EXPECT_EQ(json.exit_code, 0) << json.output;
+  expectTheSameDevice();
+  const cv::Mat mask = cv::imread(dir_ / "out/00011.png", cv::IMREAD_UNCHANGED);
+  ASSERT_FALSE(mask.empty());
+  EXPECT_NO_THROW(writeImageAtomic(device, mask));
+  expectTheSameDevice();
   EXPECT_FALSE(anyPartFile(dir_.path()));
 }
 
