@@ -1,12 +1,16 @@
 // The paper's pipeline through the public API: it finds the object, reports the camera model,
 // skips alignment for a static camera and draws each stage's pictures. What every method
 // promises is in contract_test.cc.
-#include <gtest/gtest.h>
+#include "movseg/segmenter.h"
 
+#include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <fstream>
 #include <opencv2/imgproc.hpp>
 
 #include "motion/motion_fixture.h"
-#include "movseg/segmenter.h"
 #include "test_support.h"
 
 namespace movseg {
@@ -86,7 +90,8 @@ TEST(Segmenter, DebugPicturesWhenAsked) {
   Segmenter segmenter(params);
   segmenter.process(pair.prev);
   const Result r = segmenter.process(pair.cur);
-  for (const char* name : {"matches", "difference", "features", "features_refined", "confidence", "mask"}) {
+  for (const char* name :
+       {"matches", "difference", "features", "features_refined", "confidence", "mask"}) {
     ASSERT_TRUE(r.debug.count(name)) << name;
     EXPECT_FALSE(r.debug.at(name).empty()) << name;
   }
@@ -127,6 +132,39 @@ TEST(Segmenter, OpenCvFailuresBecomeRuntimeErrors) {
     EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("OpenCV failed"), std::string::npos) << e.what();
   }
+}
+
+// A frame too large for the memory left is a one-line std::runtime_error, not a std::bad_alloc or
+// a crash, and the segmenter goes on with the next frame that fits. The address space is limited
+// for the call alone (not under AddressSanitizer, whose shadow memory needs terabytes of it).
+TEST(Segmenter, AFailedAllocationBecomesARuntimeError) {
+#ifdef __SANITIZE_ADDRESS__
+  GTEST_SKIP() << "AddressSanitizer reserves more address space than the limit leaves";
+#else
+  const cv::Mat huge(12000, 12000, CV_8U, cv::Scalar(0));  // its colour copy takes 432 MB
+  Segmenter segmenter;
+  long pages = 0;
+  std::ifstream("/proc/self/statm") >> pages;
+  rlimit saved{};
+  ASSERT_EQ(getrlimit(RLIMIT_AS, &saved), 0);
+  rlimit limited = saved;
+  limited.rlim_cur = static_cast<rlim_t>(pages) * sysconf(_SC_PAGESIZE) + (256 << 20);
+  ASSERT_EQ(setrlimit(RLIMIT_AS, &limited), 0);
+  std::string error;
+  try {
+    segmenter.process(huge);
+  } catch (const std::runtime_error& e) {
+    error = e.what();
+  } catch (...) {
+    error = "another exception";
+  }
+  ASSERT_EQ(setrlimit(RLIMIT_AS, &saved), 0);
+  EXPECT_NE(error.find("allocate"), std::string::npos) << error;
+  EXPECT_EQ(error.find('\n'), std::string::npos) << error;
+  const test::FramePair pair = movingPair();
+  segmenter.process(pair.prev);
+  EXPECT_GT(iou(segmenter.process(pair.cur).mask, pair.cur_mask), 0.5);
+#endif
 }
 
 // Float frames are read as [0, 1]; one in 0-255 would saturate to white and give an empty mask

@@ -1,6 +1,7 @@
 // Issue 15's output faults: a full disk (a file-size limit), outputs that would overwrite the
 // input, empty names, a folder holding another run, overlay names and codecs, exit codes.
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <poll.h>
 #include <signal.h>
 #include <sys/stat.h>
@@ -12,14 +13,12 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <thread>
-
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include "io/atomic_write.h"
 #include "io/overlay.h"
@@ -71,8 +70,9 @@ TEST_F(OutputFaults, FullDiskForStatsStopsWithWholeLinesUnderTheFinalName) {
   for (const std::string threads : {"1", "2"}) {
     const std::string stats = dir_ / threads + "/stats.jsonl", out = dir_ / threads + "/out";
     fs::create_directories(dir_ / threads);
-    const test::CommandResult r = test::runCliWithFileLimit(
-        3000, "segment " + frames() + " -o " + out + " --stats " + stats + " -q --threads " + threads);
+    const test::CommandResult r =
+        test::runCliWithFileLimit(3000, "segment " + frames() + " -o " + out + " --stats " + stats +
+                                            " -q --threads " + threads);
     test::expectOneLineError(r, "stats.jsonl", test::kExitRunFailed);
     ASSERT_TRUE(fs::exists(stats));
     const int lines = wholeJsonLines(stats);
@@ -90,7 +90,7 @@ TEST_F(OutputFaults, FullDiskForPicturesStops) {
     const std::string out = dir_ / threads;
     const test::CommandResult r =
         test::runCliWithFileLimit(3000, "segment " + frames() + " -o " + out +
-                                        " --method paper --debug -q --threads " + threads);
+                                            " --method paper --debug -q --threads " + threads);
     test::expectOneLineError(r, ".png", test::kExitRunFailed);
     EXPECT_TRUE(fs::exists(out + "/00000.png"));
     EXPECT_FALSE(fs::exists(out + "/00002.png"));
@@ -109,15 +109,16 @@ TEST_F(OutputFaults, FullDiskForAnOverlayVideoLeavesNoUnplayableFile) {
 
 TEST_F(OutputFaults, AnOverlayVideoPlaysWithEveryFrameInH264AtTheInputsRate) {
   const std::string video = dir_ / "x.MP4";  // the extension in any case
-  ASSERT_TRUE(test::ffmpeg("-framerate 12 -i " + frames() + "/%05d.png -c:v libx264 -pix_fmt yuv420p " +
-                           dir_ / "in.mp4"));
-  const test::CommandResult r =
-      test::runCli("segment " + dir_ / "in.mp4" + " -o " + dir_ / "out" + " --overlay " + video + " -q");
+  ASSERT_TRUE(test::ffmpeg("-framerate 12 -i " + frames() +
+                           "/%05d.png -c:v libx264 -pix_fmt yuv420p " + dir_ / "in.mp4"));
+  const test::CommandResult r = test::runCli("segment " + dir_ / "in.mp4" + " -o " + dir_ / "out" +
+                                             " --overlay " + video + " -q");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const VideoDecoder overlay(video, {});
   EXPECT_EQ(overlay.expectedFrames(), 12);
   EXPECT_DOUBLE_EQ(overlay.fps(), 12.0);
-  EXPECT_EQ(test::runShell("ffprobe -v error -show_streams " + video + " | grep -q codec_name=h264"), 0);
+  EXPECT_EQ(
+      test::runShell("ffprobe -v error -show_streams " + video + " | grep -q codec_name=h264"), 0);
 }
 
 TEST_F(OutputFaults, UnknownOverlayExtensionIsRefused) {
@@ -155,14 +156,16 @@ TEST_F(OutputFaults, FeatureDotsCanBeHidden) {
 }
 
 TEST_F(OutputFaults, OutputsInsideTheInputAreRefused) {
-  ASSERT_TRUE(test::ffmpeg("-i " + frames() + "/%05d.png -c:v libx264 -pix_fmt yuv420p " + dir_ / "in.mp4"));
+  ASSERT_TRUE(test::ffmpeg("-i " + frames() + "/%05d.png -c:v libx264 -pix_fmt yuv420p " +
+                           dir_ / "in.mp4"));
   const std::string video = dir_ / "in.mp4";
   const auto size = fs::file_size(video);
   const std::pair<std::string, std::string> cases[] = {
       {"segment " + frames() + " -o " + frames(), "-o"},
       {"segment " + frames() + " -o " + frames() + "/masks", "-o"},
       {"segment " + frames() + "/ -o " + frames() + "/./masks/", "-o"},
-      {"segment " + (*clip_ / "clip") + " -o " + frames(), "-o"},  // a sequence folder reads frames/
+      {"segment " + (*clip_ / "clip") + " -o " + frames(),
+       "-o"},  // a sequence folder reads frames/
       {"segment " + video + " -o " + dir_ / "out" + " --overlay " + video, "--overlay"},
       {"segment " + video + " -o " + dir_ / "out" + " --stats " + video, "--stats"},
       {"segment " + frames() + "/%05d.png -o " + frames(), "-o"},
@@ -194,16 +197,21 @@ TEST_F(OutputFaults, OutputsThatWouldReplaceEachOtherOrTheRunsFilesAreRefused) {
   const std::string two_inputs = "segment " + frames() + " " + dir_ / "other" + " -o " + out;
   const std::pair<std::string, std::string> cases[] = {
       {"segment " + frames() + " -o " + out + " --overlay " + out, "would overwrite the masks"},
-      {"segment " + frames() + " -o " + out + " --overlay " + out + "/", "would overwrite the masks"},
+      {"segment " + frames() + " -o " + out + " --overlay " + out + "/",
+       "would overwrite the masks"},
       {"segment " + frames() + " -o " + out + " --stats " + out + "/movseg-run.json", "--stats"},
       {"segment " + frames() + " -o " + out + " --stats " + out + "/00003.png", "--stats"},
       {"segment " + frames() + " -o " + out + " --overlay " + dir_ / "a.mp4" + " --stats " +
-           dir_ / "a.mp4", "--stats and --overlay both name"},
+           dir_ / "a.mp4",
+       "--stats and --overlay both name"},
       {two_inputs + " --overlay .", "a file name written in each input's folder"},
       {two_inputs + " --overlay ..", "a file name written in each input's folder"},
-      {"eval " + masks + " " + masks + " --json " + dir_ / "r" + " --csv " + dir_ / "r", "both name"},
-      {"eval " + masks + " " + masks + " --json " + dir_ / "r" + " --html " + dir_ / "./r", "both name"},
-      {"bench " + data + " --methods diff --json " + dir_ / "r" + " --html " + dir_ / "r", "both name"},
+      {"eval " + masks + " " + masks + " --json " + dir_ / "r" + " --csv " + dir_ / "r",
+       "both name"},
+      {"eval " + masks + " " + masks + " --json " + dir_ / "r" + " --html " + dir_ / "./r",
+       "both name"},
+      {"bench " + data + " --methods diff --json " + dir_ / "r" + " --html " + dir_ / "r",
+       "both name"},
       {"bench " + data + " --methods diff,diff --threads 2", "'diff' is named twice"},
   };
   for (const auto& [arguments, named] : cases) {
@@ -502,9 +510,9 @@ TEST_F(OutputFaults, StandardOutputAsAnOutputIsWrittenThroughItsDescriptor) {
   EXPECT_GE(logged_summaries, 1) << log.str();
 
   // eval's table, printed first, comes first in a file too: the streams are flushed before.
-  const test::CommandResult report = test::runCli(
-      "eval " + (*clip_ / "clip/masks") + " " + (*clip_ / "clip/masks") + " --json /dev/stdout > " +
-      dir_ / "report");
+  const test::CommandResult report =
+      test::runCli("eval " + (*clip_ / "clip/masks") + " " + (*clip_ / "clip/masks") +
+                   " --json /dev/stdout > " + dir_ / "report");
   ASSERT_EQ(report.exit_code, 0) << report.output;
   std::ostringstream text;
   text << std::ifstream(dir_ / "report").rdbuf();
@@ -521,15 +529,15 @@ TEST_F(OutputFaults, NamesThatAreNotUtf8AreReportedWithAReplacementCharacter) {
   const std::string data = dir_ / "data", latin1 = "caf\xe9";
   fs::create_directories(data);
   fs::create_directory_symlink(*clip_ / "clip", data + "/" + latin1);
-  const test::CommandResult segment = test::runCli(
-      "segment '" + data + "/" + latin1 + "/frames' -o " + dir_ / "out" + " -q");
+  const test::CommandResult segment =
+      test::runCli("segment '" + data + "/" + latin1 + "/frames' -o " + dir_ / "out" + " -q");
   ASSERT_EQ(segment.exit_code, 0) << segment.output;
   const test::CommandResult bench =
       test::runCli("bench " + data + " --methods diff --json " + dir_ / "bench.json");
   ASSERT_EQ(bench.exit_code, 0) << bench.output;
-  const test::CommandResult eval = test::runCli("eval '" + data + "/" + latin1 + "/masks' '" +
-                                                data + "/" + latin1 + "' --json " +
-                                                dir_ / "eval.json");
+  const test::CommandResult eval =
+      test::runCli("eval '" + data + "/" + latin1 + "/masks' '" + data + "/" + latin1 +
+                   "' --json " + dir_ / "eval.json");
   ASSERT_EQ(eval.exit_code, 0) << eval.output;
   const auto read = [](const std::string& path) {
     return nlohmann::json::parse(std::ifstream(path));
@@ -549,10 +557,9 @@ TEST_F(OutputFaults, TheRunsOwnFoldersHoldNoInputAndNoOtherOutput) {
                            "which the run's own pictures replace", test::kExitUsage);
   EXPECT_EQ(test::filesIn(out + "/overlay").size(), 12u);
   for (const std::string& option : {std::string(" --overlay "), std::string(" --stats ")}) {
-    test::expectOneLineError(
-        test::runCli("segment " + frames() + " -o " + dir_ / "dbg" + " --debug" + option +
-                     dir_ / "dbg/debug/mask"),
-        "where --debug writes its pictures", test::kExitUsage);
+    test::expectOneLineError(test::runCli("segment " + frames() + " -o " + dir_ / "dbg" +
+                                          " --debug" + option + dir_ / "dbg/debug/mask"),
+                             "where --debug writes its pictures", test::kExitUsage);
   }
   EXPECT_FALSE(fs::exists(dir_ / "dbg/debug"));
 }
@@ -593,7 +600,8 @@ TEST_F(OutputFaults, SynthAndDemoReplaceAFolderThatHoldsFilesOnlyWithOverwrite) 
 TEST_F(OutputFaults, ARunIntoAUsedFolderIsRefusedUnlessOverwritten) {
   const std::string run = "segment " + frames() + " -o " + dir_ / "out" + " -q";
   ASSERT_EQ(test::runCli(run).exit_code, 0);
-  const nlohmann::json manifest = nlohmann::json::parse(std::ifstream(dir_ / "out/movseg-run.json"));
+  const nlohmann::json manifest =
+      nlohmann::json::parse(std::ifstream(dir_ / "out/movseg-run.json"));
   EXPECT_EQ(manifest.at("input").get<std::string>(), frames());
   EXPECT_EQ(manifest.at("frames_done").get<int>(), 12);
   EXPECT_TRUE(manifest.at("finished").get<bool>());
@@ -629,8 +637,8 @@ TEST_F(OutputFaults, ExitCodesSayUsageOrRunFailure) {
 
 TEST_F(OutputFaults, AClosedStdoutIsNotADeathBySigpipe) {
   const std::string rc = dir_ / "rc";
-  test::runShell("(" + std::string(MOVSEG_CLI_PATH) + " segment " + frames() + " -o " + dir_ / "out" +
-                 "; echo $? > " + rc + ") | true");
+  test::runShell("(" + std::string(MOVSEG_CLI_PATH) + " segment " + frames() + " -o " +
+                 dir_ / "out" + "; echo $? > " + rc + ") | true");
   std::ifstream in(rc);
   int code = -1;
   in >> code;
