@@ -1,16 +1,16 @@
 // The paper's pipeline through the public API: it finds the object, reports the camera model,
 // skips alignment for a static camera and draws each stage's pictures. What every method
 // promises is in contract_test.cc.
-#include "movseg/segmenter.h"
-
-#include <gtest/gtest.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
 #include <fstream>
+
+#include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
 #include "motion/motion_fixture.h"
+#include "movseg/segmenter.h"
 #include "test_support.h"
 
 namespace movseg {

@@ -1,7 +1,6 @@
 // Issue 15's output faults: a full disk (a file-size limit), outputs that would overwrite the
 // input, empty names, a folder holding another run, overlay names and codecs, exit codes.
 #include <fcntl.h>
-#include <gtest/gtest.h>
 #include <poll.h>
 #include <signal.h>
 #include <sys/stat.h>
@@ -13,12 +12,14 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <thread>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "io/atomic_write.h"
 #include "io/overlay.h"
