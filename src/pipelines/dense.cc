@@ -14,6 +14,7 @@
 #include "core/frame.h"
 #include "core/timing.h"
 #include "cut/evidence_cut.h"
+#include "cut/motion_regions.h"
 #include "evidence/colour_model.h"
 #include "evidence/evidence_debug.h"
 #include "evidence/motion_evidence.h"
@@ -203,7 +204,9 @@ class DensePipeline : public Pipeline {
         flow_(params.flow_finest_scale),
         camera_fitter_(params),
         colour_(params),
-        rng_(params.seed) {}
+        rng_(params.seed),
+        // The most evidence one flow patch can give a region: its pixels, each at a pair's most.
+        one_patch_of_evidence_(params.evidence_max * flow_.reach() * flow_.reach()) {}
 
   std::unique_ptr<Analysis> newAnalysis() const override {
     return std::make_unique<DenseAnalysis>();
@@ -269,6 +272,12 @@ class DensePipeline : public Pipeline {
 
     start = Clock::now();
     cut_.cut(unary_, a.contrast, &diag.cut_nodes, &mask_);
+    // Still to the camera fit's precision: twice its inlier distance.
+    if (params_.still_regions && isStill(camera_, mask_.size(), 2 * params_.flow_inlier_distance)) {
+      diag.still_regions = regions_.add(evidence_, one_patch_of_evidence_, &mask_);
+    } else {
+      regions_.forget(mask_.size());
+    }
     if (!a.working_ignored.empty()) clearWhere(a.working_ignored, &mask_);  // nor carried on
     const cv::Mat mask = edge_snap_.snap(mask_, a.grey, params_.edge_snap, a.input_grey);
     diag.cut_ms = millisecondsSince(start);
@@ -301,6 +310,7 @@ class DensePipeline : public Pipeline {
   // A stream's first pair, or the first after a scene cut: no mask to carry, no colours known.
   cv::Mat forget(cv::Size size) {
     colour_.reset();
+    regions_.forget(size);
     depth_ = PersistentDepth();
     last_model_.reset();
     mask_.release();
@@ -384,6 +394,7 @@ class DensePipeline : public Pipeline {
   std::vector<float> sample_residuals_, unconfirmed_;  // scratch of unconfirmedResiduals()
   ColourModel colour_;
   cv::RNG rng_;
+  const double one_patch_of_evidence_;
   cv::Mat mask_;  // the last frame's, at the working scale
   // The pair's images, in the buffers of the last pair's.
   cv::Mat carried_, evidence_, unary_, residual_, confirmation_;
@@ -392,6 +403,7 @@ class DensePipeline : public Pipeline {
   PhotometricCheck photometric_;
   LevelMap levels_;  // the pair's change of light
   EvidenceCut cut_;
+  MotionRegions regions_;
   EdgeSnap edge_snap_;
   PersistentDepth depth_;
   RepeatedFrames repeats_;  // phase 1's, as the flow
