@@ -95,11 +95,27 @@ struct Counted {
   Result last;  // of one more frame after the counted ones: what the counted frames went through
 };
 
+// OpenCV's parallel loops run on the calling thread while it lives. A worker thread sets up its
+// thread-local state (cv::theRNG()) the first time the scheduler gives it a loop, which on a
+// loaded machine can be after the warm-up frames (a flaky count of 0.2 a frame). The buffers a
+// loop allocates per call are allocated by its body on whatever thread runs it: counted either way.
+class OneOpenCvThread {
+ public:
+  OneOpenCvThread() : threads_(cv::getNumThreads()) { cv::setNumThreads(1); }
+  ~OneOpenCvThread() { cv::setNumThreads(threads_); }
+  OneOpenCvThread(const OneOpenCvThread&) = delete;
+  OneOpenCvThread& operator=(const OneOpenCvThread&) = delete;
+
+ private:
+  int threads_;
+};
+
 // Allocations per frame of a Segmenter with `params` on a 320x240 clip, after the first frames
 // have sized every buffer.
 // `framed`: the frames letterboxed (black bars found on every frame; no wider than the working
 // width, whose resizes allocate) and a timestamp's box ignored.
 Counted allocationsPerFrame(const Params& params, bool framed = false) {
+  const OneOpenCvThread one_thread;
   SynthOptions clip;
   clip.frames = 24;
   const SynthSequence sequence(clip);
