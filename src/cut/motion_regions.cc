@@ -20,8 +20,9 @@ int MotionRegions::add(const cv::Mat& evidence, double least, cv::Mat* mask) {
       double sum = 0;
       for (const cv::Point& p : region_) sum += evidence.at<float>(p);
       if (sum <= least) continue;
-      for (const cv::Point& p : region_) regions_.at<uchar>(p) = 1;
-      if (!seenLastTime()) continue;
+      const bool taken = seenLastTime();
+      for (const cv::Point& p : region_) regions_.at<uchar>(p) = taken ? 2 : 1;
+      if (!taken) continue;
       for (const cv::Point& p : region_) mask->at<uchar>(p) = 255;
       ++added;
     }
@@ -34,6 +35,14 @@ int MotionRegions::add(const cv::Mat& evidence, double least, cv::Mat* mask) {
 void MotionRegions::forget(cv::Size size) {
   has_last_ = false;
   makeBuffers(size);
+}
+
+void MotionRegions::draw(cv::Mat* picture) const {
+  if (!has_last_) {
+    *picture = cv::Mat::zeros(last_.size(), CV_8U);
+    return;
+  }
+  last_.convertTo(*picture, CV_8U, 127.5);  // 1 -> 128, 2 -> 255
 }
 
 void MotionRegions::makeBuffers(cv::Size size) {

@@ -29,14 +29,20 @@ class MotionRegions {
   // masks of `size` already, so that a view that stands still later allocates nothing then.
   void forget(cv::Size size);
 
+  // The last call's regions over `least` (CV_8U): 255 where one joined the mask, 128 where one
+  // was seen for the first time; zero after forget().
+  void draw(cv::Mat* picture) const;
+
  private:
   void makeBuffers(cv::Size size);
   // Grows the region of `seed` into region_, marking it in seen_; whether it touches the mask.
   bool grow(const cv::Mat& evidence, const cv::Mat& mask, cv::Point seed);
   bool seenLastTime() const;  // whether region_ overlaps a region of the last call's
 
-  cv::Mat seen_;              // CV_8U: pixels already in a region
-  cv::Mat regions_, last_;    // CV_8U: this call's and the last call's regions over `least`
+  cv::Mat seen_;  // CV_8U: pixels already in a region
+  // CV_8U: this call's and the last call's regions over `least`: 2 where one joined the mask, 1
+  // where first seen.
+  cv::Mat regions_, last_;
   bool has_last_ = false;
   std::vector<cv::Point> region_, stack_;
 };

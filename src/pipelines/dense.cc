@@ -285,6 +285,11 @@ class DensePipeline : public Pipeline {
     debug.put("carried", [&] { return drawCarried(carried_, a.grey.size()); });
     debug.put("confirmation", [&] { return drawConfirmation(confirmation_); });
     debug.put("unary", [&] { return drawLogOdds(unary_); });
+    debug.put("regions", [&] {  // white: motion apart from the mask taken in a still view
+      cv::Mat picture;
+      regions_.draw(&picture);
+      return picture;
+    });
     debug.put("edges", [&] {  // at the size of the mask returned
       cv::Mat cut;
       upscaledMask(mask_, mask.size(), &cut);

@@ -104,7 +104,8 @@ TEST(SegmentCli, DebugWritesEachStagesPictures) {
       0);
   const std::vector<std::pair<std::string, cv::Size>> stages{
       {"residual", {320, 240}}, {"carried", {320, 240}}, {"confirmation", {320, 240}},
-      {"uncovered", {320, 240}}, {"unary", {320, 240}}, {"edges", {640, 480}},
+      {"uncovered", {320, 240}}, {"unary", {320, 240}}, {"regions", {320, 240}},
+      {"edges", {640, 480}},
       {"mask", {640, 480}}};
   for (const auto& [stage, size] : stages) {
     const cv::Mat picture = cv::imread(dir / "dense/debug/" + stage + "/00002.png");

@@ -22,11 +22,21 @@ TEST(MotionRegions, ARegionSeenOnTwoPairsOverTheLeastJoinsTheMask) {
   MotionRegions regions;
   const cv::Mat evidence = evidenceWith({kBox}, 2.0f);
   cv::Mat mask = cv::Mat::zeros(evidence.size(), CV_8U);
+  cv::Mat picture;
   EXPECT_EQ(regions.add(evidence, 150, &mask), 0);  // a first sighting
   EXPECT_EQ(cv::countNonZero(mask), 0);
+  regions.draw(&picture);  // grey where first seen
+  EXPECT_EQ(cv::countNonZero(picture == 128), 100);
+  EXPECT_EQ(cv::countNonZero(picture), 100);
   EXPECT_EQ(regions.add(evidence, 150, &mask), 1);
   EXPECT_EQ(cv::countNonZero(mask), 100);
   EXPECT_EQ(cv::countNonZero(mask(kBox)), 100);
+  regions.draw(&picture);  // white where taken
+  EXPECT_EQ(cv::countNonZero(picture(kBox) == 255), 100);
+  EXPECT_EQ(cv::countNonZero(picture), 100);
+  regions.forget(evidence.size());
+  regions.draw(&picture);
+  EXPECT_EQ(cv::countNonZero(picture), 0);
 }
 
 TEST(MotionRegions, ARegionUnderTheLeastStaysOut) {

@@ -109,7 +109,7 @@ def test_debug_pictures_and_compensated_previous_frame(frames):
     segmenter.process(frames[0])
     r = segmenter.process(frames[1])
     # dense's stages at its working scale (320 px wide at most); the edges and mask at the frame's
-    stages = {"carried", "confirmation", "residual", "unary", "uncovered"}
+    stages = {"carried", "confirmation", "regions", "residual", "unary", "uncovered"}
     assert set(r.debug) == stages | {"edges", "mask"}
     assert all(r.debug[stage].shape == frames[1].shape[:2] for stage in stages)
     assert r.debug["edges"].shape == frames[1].shape and np.array_equal(r.debug["mask"], r.mask)
