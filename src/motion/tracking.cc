@@ -33,12 +33,13 @@ std::vector<Track> trackForwardBackward(const std::vector<cv::Mat>& prev_pyramid
   std::transform(points.begin(), points.end(), forward.begin(),
                  [&](cv::Point2f p) { return applyModel(predicted, p); });
   std::vector<uchar> ok_forward, ok_backward;
-  // No error output: OpenCV then skips a pass over each window (the tracks are the same).
-  cv::calcOpticalFlowPyrLK(prev_pyramid, cur_pyramid, points, forward, ok_forward, cv::noArray(),
+  // Not read, but asked for: OpenCV's tracks differ without it on some frames (docs/design.md,
+  // "Speed of paper").
+  std::vector<float> error;
+  cv::calcOpticalFlowPyrLK(prev_pyramid, cur_pyramid, points, forward, ok_forward, error, window,
+                           params.lk_levels, stop, cv::OPTFLOW_USE_INITIAL_FLOW);
+  cv::calcOpticalFlowPyrLK(cur_pyramid, prev_pyramid, forward, backward, ok_backward, error,
                            window, params.lk_levels, stop, cv::OPTFLOW_USE_INITIAL_FLOW);
-  cv::calcOpticalFlowPyrLK(cur_pyramid, prev_pyramid, forward, backward, ok_backward,
-                           cv::noArray(), window, params.lk_levels, stop,
-                           cv::OPTFLOW_USE_INITIAL_FLOW);
 
   const cv::Mat& prev = prev_pyramid[0];
   const cv::Mat& cur = cur_pyramid[0];
