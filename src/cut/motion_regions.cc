@@ -2,28 +2,39 @@
 
 #include <cstring>
 
-namespace movseg {
+#include <opencv2/core/hal/intrin.hpp>
 
-int MotionRegions::add(const cv::Mat& evidence, double least, cv::Mat* mask) {
-  CV_Assert(evidence.type() == CV_32F && mask->type() == CV_8U && evidence.size() == mask->size());
+namespace movseg {
+namespace {
+
+// A pixel of the state image: neither, positive evidence apart from the mask not yet in a
+// region, in a region already, the mask.
+enum State : uchar { kNone = 0, kCandidate = 1, kSeen = 2, kMask = 3 };
+
+}  // namespace
+
+int MotionRegions::add(const cv::Mat& evidence, const cv::Mat& unary, double least, cv::Mat* mask) {
+  CV_Assert(evidence.type() == CV_32F && unary.type() == CV_32F && mask->type() == CV_8U &&
+            evidence.size() == mask->size() && unary.size() == mask->size());
   if (last_.size() != evidence.size()) has_last_ = false;
   makeBuffers(evidence.size());
+  markPixels(evidence, *mask);
   // Zeroed by hand: cv::Mat::setTo allocates on every call.
-  std::memset(seen_.data, 0, seen_.total());
   std::memset(regions_.data, 0, regions_.total());
   int added = 0;
-  for (int y = 0; y < evidence.rows; ++y) {
-    const float* value = evidence.ptr<float>(y);
-    for (int x = 0; x < evidence.cols; ++x) {
-      if (value[x] <= 0 || mask->at<uchar>(y, x) != 0 || seen_.at<uchar>(y, x) != 0) continue;
-      if (grow(evidence, *mask, {x, y})) continue;
-      double sum = 0;
-      for (const cv::Point& p : region_) sum += evidence.at<float>(p);
-      if (sum <= least) continue;
+  const int width = state_.cols;
+  for (int y = 1; y + 1 < state_.rows; ++y) {
+    const uchar* row = state_.ptr<uchar>(y);
+    const uchar* end = row + width;
+    // memchr skips to the next candidate; growing a region marks its pixels seen.
+    for (const uchar* at = row;
+         (at = static_cast<const uchar*>(std::memchr(at, kCandidate, end - at))) != nullptr;) {
+      const int seed = y * width + static_cast<int>(at - row);
+      if (grow(seed) || sumOver(evidence) <= least || sumOver(unary) <= 0) continue;
       const bool taken = seenLastTime();
-      for (const cv::Point& p : region_) regions_.at<uchar>(p) = taken ? 2 : 1;
+      for (int i : region_) regions_.at<uchar>(pixelOf(i)) = taken ? 2 : 1;
       if (!taken) continue;
-      for (const cv::Point& p : region_) mask->at<uchar>(p) = 255;
+      for (int i : region_) mask->at<uchar>(pixelOf(i)) = 255;
       ++added;
     }
   }
@@ -46,42 +57,78 @@ void MotionRegions::draw(cv::Mat* picture) const {
 }
 
 void MotionRegions::makeBuffers(cv::Size size) {
-  for (cv::Mat* image : {&seen_, &regions_, &last_}) image->create(size, CV_8U);
+  for (cv::Mat* image : {&regions_, &last_}) image->create(size, CV_8U);
+  if (state_.size() != size + cv::Size(2, 2)) {
+    state_ = cv::Mat::zeros(size + cv::Size(2, 2), CV_8U);  // its border stays kNone
+  }
   // A region holds each pixel once, and so does the stack that grows it: room for the whole
   // frame once, so that no frame allocates for a region larger than the last ones.
   region_.reserve(static_cast<size_t>(size.area()));
   stack_.reserve(static_cast<size_t>(size.area()));
 }
 
-bool MotionRegions::grow(const cv::Mat& evidence, const cv::Mat& mask, cv::Point seed) {
+void MotionRegions::markPixels(const cv::Mat& evidence, const cv::Mat& mask) {
+  const cv::v_uint8x16 candidate = cv::v_setall_u8(kCandidate), in_mask = cv::v_setall_u8(kMask);
+  const cv::v_uint8x16 none = cv::v_setzero_u8();
+  const cv::v_float32x4 zero = cv::v_setzero_f32();
+  // Where the evidence is positive: four float compares packed into 16 bytes of 0 or 0xff.
+  const auto positive = [&](const float* e) {
+    const auto half = [&](const float* at) {
+      return cv::v_pack(cv::v_reinterpret_as_s32(cv::v_load(at) > zero),
+                        cv::v_reinterpret_as_s32(cv::v_load(at + 4) > zero));
+    };
+    return cv::v_reinterpret_as_u8(cv::v_pack(half(e), half(e + 8)));
+  };
+  for (int y = 0; y < evidence.rows; ++y) {
+    const float* e = evidence.ptr<float>(y);
+    const uchar* m = mask.ptr<uchar>(y);
+    uchar* s = state_.ptr<uchar>(y + 1) + 1;
+    int x = 0;
+    for (; x + 16 <= evidence.cols; x += 16) {
+      const cv::v_uint8x16 free = cv::v_select(positive(e + x), candidate, none);
+      cv::v_store(s + x, cv::v_select(cv::v_load(m + x) == none, free, in_mask));
+    }
+    for (; x < evidence.cols; ++x) s[x] = m[x] != 0 ? kMask : (e[x] > 0 ? kCandidate : kNone);
+  }
+}
+
+bool MotionRegions::grow(int seed) {
+  const int w = state_.cols;
+  const int neighbours[] = {-w - 1, -w, -w + 1, -1, 1, w - 1, w, w + 1};
+  uchar* state = state_.data;
   region_.clear();
   stack_.assign(1, seed);
-  seen_.at<uchar>(seed) = 1;
+  state[seed] = kSeen;
   bool touches = false;
   while (!stack_.empty()) {
-    const cv::Point p = stack_.back();
+    const int p = stack_.back();
     stack_.pop_back();
     region_.push_back(p);
-    for (int dy = -1; dy <= 1; ++dy) {
-      for (int dx = -1; dx <= 1; ++dx) {
-        const cv::Point q(p.x + dx, p.y + dy);
-        if (q.x < 0 || q.y < 0 || q.x >= evidence.cols || q.y >= evidence.rows) continue;
-        if (mask.at<uchar>(q) != 0) {
-          touches = true;
-        } else if (evidence.at<float>(q) > 0 && seen_.at<uchar>(q) == 0) {
-          seen_.at<uchar>(q) = 1;
-          stack_.push_back(q);
-        }
-      }
+    for (int offset : neighbours) {
+      uchar& q = state[p + offset];
+      touches |= q == kMask;
+      if (q != kCandidate) continue;
+      q = kSeen;
+      stack_.push_back(p + offset);
     }
   }
   return touches;
 }
 
+cv::Point MotionRegions::pixelOf(int index) const {
+  return {index % state_.cols - 1, index / state_.cols - 1};
+}
+
+double MotionRegions::sumOver(const cv::Mat& values) const {
+  double sum = 0;
+  for (int i : region_) sum += values.at<float>(pixelOf(i));
+  return sum;
+}
+
 bool MotionRegions::seenLastTime() const {
   if (!has_last_) return false;
-  for (const cv::Point& p : region_) {
-    if (last_.at<uchar>(p) != 0) return true;
+  for (int i : region_) {
+    if (last_.at<uchar>(pixelOf(i)) != 0) return true;
   }
   return false;
 }

@@ -345,19 +345,6 @@ void flowMap(const cv::Mat& flow, cv::Mat* map) {
   }
 }
 
-bool isStill(const FlowCamera& camera, cv::Size size, double tolerance) {
-  if (camera.fallback || camera.epipole) return false;
-  const double w = size.width, h = size.height;
-  for (const cv::Vec3d& corner : {cv::Vec3d(0, 0, 1), cv::Vec3d(w, 0, 1), cv::Vec3d(0, h, 1),
-                                 cv::Vec3d(w, h, 1)}) {
-    const cv::Vec3d to = camera.model * corner;
-    if (std::hypot(to[0] / to[2] - corner[0], to[1] / to[2] - corner[1]) >= tolerance) {
-      return false;
-    }
-  }
-  return true;
-}
-
 void cameraMap(const cv::Matx33d& model, cv::Size size, cv::Mat* map) {
   map->create(size, CV_32FC2);
   const cv::Matx33f m(model);

@@ -87,12 +87,6 @@ void residualMotion(const cv::Mat& flow_map, const cv::Mat& camera_map, const Fl
 void flowMap(const cv::Mat& flow, cv::Mat* map);
 void cameraMap(const cv::Matx33d& model, cv::Size size, cv::Mat* map);
 
-// Whether the view stood still for the pair: a camera fitted (not the fall-back), no depth read,
-// and no corner of a view of `size` moved `tolerance` px or more by the model. For a homography
-// this close to the identity the corners bound every pixel's move. With no camera motion there
-// is no parallax: what the flow sees move, moves.
-bool isStill(const FlowCamera& camera, cv::Size size, double tolerance);
-
 // residualMotion() at the samples of `camera`, into `residuals`.
 void residualAtSamples(const FlowCamera& camera, std::vector<float>* residuals);
 

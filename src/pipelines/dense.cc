@@ -272,9 +272,11 @@ class DensePipeline : public Pipeline {
 
     start = Clock::now();
     cut_.cut(unary_, a.contrast, &diag.cut_nodes, &mask_);
-    // Still to the camera fit's precision: twice its inlier distance.
-    if (params_.still_regions && isStill(camera_, mask_.size(), 2 * params_.flow_inlier_distance)) {
-      diag.still_regions = regions_.add(evidence_, one_patch_of_evidence_, &mask_);
+    // Not where no camera was fitted (no motion is measured against it), nor where depth is
+    // read: the flow at a near thing's occluding edge is neither its surface's nor the far
+    // one's, and its residual across the epipolar lines makes regions there.
+    if (params_.motion_regions && !camera_.fallback && !camera_.epipole) {
+      diag.motion_regions = regions_.add(evidence_, unary_, one_patch_of_evidence_, &mask_);
     } else {
       regions_.forget(mask_.size());
     }
@@ -285,7 +287,7 @@ class DensePipeline : public Pipeline {
     debug.put("carried", [&] { return drawCarried(carried_, a.grey.size()); });
     debug.put("confirmation", [&] { return drawConfirmation(confirmation_); });
     debug.put("unary", [&] { return drawLogOdds(unary_); });
-    debug.put("regions", [&] {  // white: motion apart from the mask taken in a still view
+    debug.put("regions", [&] {  // white: motion apart from the mask taken into it
       cv::Mat picture;
       regions_.draw(&picture);
       return picture;

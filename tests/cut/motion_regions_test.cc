@@ -23,12 +23,12 @@ TEST(MotionRegions, ARegionSeenOnTwoPairsOverTheLeastJoinsTheMask) {
   const cv::Mat evidence = evidenceWith({kBox}, 2.0f);
   cv::Mat mask = cv::Mat::zeros(evidence.size(), CV_8U);
   cv::Mat picture;
-  EXPECT_EQ(regions.add(evidence, 150, &mask), 0);  // a first sighting
+  EXPECT_EQ(regions.add(evidence, evidence, 150, &mask), 0);  // a first sighting
   EXPECT_EQ(cv::countNonZero(mask), 0);
   regions.draw(&picture);  // grey where first seen
   EXPECT_EQ(cv::countNonZero(picture == 128), 100);
   EXPECT_EQ(cv::countNonZero(picture), 100);
-  EXPECT_EQ(regions.add(evidence, 150, &mask), 1);
+  EXPECT_EQ(regions.add(evidence, evidence, 150, &mask), 1);
   EXPECT_EQ(cv::countNonZero(mask), 100);
   EXPECT_EQ(cv::countNonZero(mask(kBox)), 100);
   regions.draw(&picture);  // white where taken
@@ -43,8 +43,8 @@ TEST(MotionRegions, ARegionUnderTheLeastStaysOut) {
   MotionRegions regions;
   const cv::Mat evidence = evidenceWith({kBox}, 2.0f);
   cv::Mat mask = cv::Mat::zeros(evidence.size(), CV_8U);
-  regions.add(evidence, 250, &mask);
-  EXPECT_EQ(regions.add(evidence, 250, &mask), 0);
+  regions.add(evidence, evidence, 250, &mask);
+  EXPECT_EQ(regions.add(evidence, evidence, 250, &mask), 0);
   EXPECT_EQ(cv::countNonZero(mask), 0);
 }
 
@@ -53,23 +53,44 @@ TEST(MotionRegions, ARegionUnderTheLeastStaysOut) {
 TEST(MotionRegions, OnlyARegionOverlappingOneOfTheLastPairIsTaken) {
   MotionRegions regions;
   cv::Mat mask = cv::Mat::zeros(60, 80, CV_8U);
-  regions.add(evidenceWith({kBox}, 2.0f), 150, &mask);
-  EXPECT_EQ(regions.add(evidenceWith({kBox + cv::Point(3, 2)}, 2.0f), 150, &mask), 1);
+  const cv::Mat first = evidenceWith({kBox}, 2.0f);
+  regions.add(first, first, 150, &mask);
+  const cv::Mat moved = evidenceWith({kBox + cv::Point(3, 2)}, 2.0f);
+  EXPECT_EQ(regions.add(moved, moved, 150, &mask), 1);
   EXPECT_EQ(cv::countNonZero(mask(kBox + cv::Point(3, 2))), 100);
   mask.setTo(0);
-  EXPECT_EQ(regions.add(evidenceWith({cv::Rect(50, 30, 10, 10)}, 2.0f), 150, &mask), 0);
+  const cv::Mat elsewhere = evidenceWith({cv::Rect(50, 30, 10, 10)}, 2.0f);
+  EXPECT_EQ(regions.add(elsewhere, elsewhere, 150, &mask), 0);
   EXPECT_EQ(cv::countNonZero(mask), 0);
 }
 
-// A pair that was not seen still comes between: the next region is a first sighting again.
+// What memory and colour keep out stays out: a region whose unary sums to zero or less (here
+// -0.5 a pixel over the box: the pair's +2 outweighed) is not taken, however much evidence the
+// pair alone gives it; +0.5 a pixel is.
+TEST(MotionRegions, ARegionWhoseUnaryPrefersBackgroundStaysOut) {
+  const cv::Mat evidence = evidenceWith({kBox}, 2.0f);
+  for (const float unary_in_box : {-0.5f, 0.f, 0.5f}) {
+    const cv::Mat unary = evidenceWith({kBox}, unary_in_box);
+    MotionRegions regions;
+    cv::Mat mask = cv::Mat::zeros(evidence.size(), CV_8U);
+    regions.add(evidence, unary, 150, &mask);
+    EXPECT_EQ(regions.add(evidence, unary, 150, &mask), unary_in_box > 0 ? 1 : 0) << unary_in_box;
+    EXPECT_EQ(cv::countNonZero(mask), unary_in_box > 0 ? 100 : 0) << unary_in_box;
+    cv::Mat picture;
+    regions.draw(&picture);  // drawn only when taken or first seen
+    EXPECT_EQ(cv::countNonZero(picture), unary_in_box > 0 ? 100 : 0) << unary_in_box;
+  }
+}
+
+// A pair with no camera fitted comes between: the next region is a first sighting again.
 TEST(MotionRegions, ForgettingMakesTheNextRegionAFirstSighting) {
   MotionRegions regions;
   const cv::Mat evidence = evidenceWith({kBox}, 2.0f);
   cv::Mat mask = cv::Mat::zeros(evidence.size(), CV_8U);
-  regions.add(evidence, 150, &mask);
+  regions.add(evidence, evidence, 150, &mask);
   regions.forget(evidence.size());
-  EXPECT_EQ(regions.add(evidence, 150, &mask), 0);
-  EXPECT_EQ(regions.add(evidence, 150, &mask), 1);
+  EXPECT_EQ(regions.add(evidence, evidence, 150, &mask), 0);
+  EXPECT_EQ(regions.add(evidence, evidence, 150, &mask), 1);
 }
 
 // A region that touches the mask, even at a corner only, is the outline the cut chose for a mover
@@ -79,16 +100,16 @@ TEST(MotionRegions, ARegionTouchingTheMaskStaysOutAndDiagonalsConnect) {
   cv::Mat evidence = evidenceWith({kBox}, 2.0f);
   cv::Mat mask = cv::Mat::zeros(evidence.size(), CV_8U);
   mask.at<uchar>(9, 9) = 255;  // the box's top-left corner's diagonal neighbour
-  regions.add(evidence, 150, &mask);
-  EXPECT_EQ(regions.add(evidence, 150, &mask), 0);
+  regions.add(evidence, evidence, 150, &mask);
+  EXPECT_EQ(regions.add(evidence, evidence, 150, &mask), 0);
   EXPECT_EQ(cv::countNonZero(mask), 1);
 
   // Two 6x6 boxes at 2 (72 each) meeting at a corner: one region of 144, over 100.
   evidence = evidenceWith({cv::Rect(30, 30, 6, 6), cv::Rect(36, 36, 6, 6)}, 2.0f);
   mask.setTo(0);
   MotionRegions joined;
-  joined.add(evidence, 100, &mask);
-  EXPECT_EQ(joined.add(evidence, 100, &mask), 1);
+  joined.add(evidence, evidence, 100, &mask);
+  EXPECT_EQ(joined.add(evidence, evidence, 100, &mask), 1);
   EXPECT_EQ(cv::countNonZero(mask), 72);
 }
 

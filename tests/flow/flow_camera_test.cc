@@ -212,26 +212,5 @@ TEST(FlowCamera, AMoverTheCameraFollowsIsNotDepth) {
   EXPECT_FALSE(readsDepthOfStrip([](int) { return cv::Point2f(0, 0); }));
 }
 
-// A view stands still when no corner moves by the tolerance: a zoom of 1.01 about the centre of
-// a 320x180 view moves its corners by 1.8 px, a shift of 0.3 px moves every pixel by 0.3 px.
-// A camera that fell back to the identity, or one that reads depth, is not a still view.
-TEST(FlowCamera, AStillViewMovesNoCornerByTheTolerance) {
-  const cv::Size size(320, 180);
-  FlowCamera camera;
-  EXPECT_TRUE(isStill(camera, size, 1.0));
-  camera.model = cv::Matx33d(1, 0, 0.3, 0, 1, 0, 0, 0, 1);
-  EXPECT_TRUE(isStill(camera, size, 1.0));
-  EXPECT_FALSE(isStill(camera, size, 0.3));
-  camera.model = cv::Matx33d(1.01, 0, -1.6, 0, 1.01, -0.9, 0, 0, 1);  // about (160, 90)
-  EXPECT_FALSE(isStill(camera, size, 1.0));
-  EXPECT_TRUE(isStill(camera, size, 2.0));
-  camera.model = cv::Matx33d::eye();
-  camera.fallback = true;
-  EXPECT_FALSE(isStill(camera, size, 1.0));
-  camera.fallback = false;
-  camera.epipole = cv::Vec3d(160, 90, 1);
-  EXPECT_FALSE(isStill(camera, size, 1.0));
-}
-
 }  // namespace
 }  // namespace movseg
