@@ -8,8 +8,9 @@ namespace movseg {
 namespace {
 
 // A pixel of the state image: neither, positive evidence apart from the mask not yet in a
-// region, in a region already, the mask.
-enum State : uchar { kNone = 0, kCandidate = 1, kSeen = 2, kMask = 3 };
+// region, in a region already, the mask. (Names of their own: a unity build puts this file's
+// anonymous namespace beside other files'.)
+constexpr uchar kNotMoving = 0, kCandidatePixel = 1, kGrownPixel = 2, kMaskPixel = 3;
 
 }  // namespace
 
@@ -28,7 +29,7 @@ int MotionRegions::add(const cv::Mat& evidence, const cv::Mat& unary, double lea
     const uchar* end = row + width;
     // memchr skips to the next candidate; growing a region marks its pixels seen.
     for (const uchar* at = row;
-         (at = static_cast<const uchar*>(std::memchr(at, kCandidate, end - at))) != nullptr;) {
+         (at = static_cast<const uchar*>(std::memchr(at, kCandidatePixel, end - at))) != nullptr;) {
       const int seed = y * width + static_cast<int>(at - row);
       if (grow(seed) || sumOver(evidence) <= least || sumOver(unary) <= 0) continue;
       const bool taken = seenLastTime();
@@ -59,7 +60,7 @@ void MotionRegions::draw(cv::Mat* picture) const {
 void MotionRegions::makeBuffers(cv::Size size) {
   for (cv::Mat* image : {&regions_, &last_}) image->create(size, CV_8U);
   if (state_.size() != size + cv::Size(2, 2)) {
-    state_ = cv::Mat::zeros(size + cv::Size(2, 2), CV_8U);  // its border stays kNone
+    state_ = cv::Mat::zeros(size + cv::Size(2, 2), CV_8U);  // its border stays kNotMoving
   }
   // A region holds each pixel once, and so does the stack that grows it: room for the whole
   // frame once, so that no frame allocates for a region larger than the last ones.
@@ -68,7 +69,8 @@ void MotionRegions::makeBuffers(cv::Size size) {
 }
 
 void MotionRegions::markPixels(const cv::Mat& evidence, const cv::Mat& mask) {
-  const cv::v_uint8x16 candidate = cv::v_setall_u8(kCandidate), in_mask = cv::v_setall_u8(kMask);
+  const cv::v_uint8x16 candidate = cv::v_setall_u8(kCandidatePixel),
+                       in_mask = cv::v_setall_u8(kMaskPixel);
   const cv::v_uint8x16 none = cv::v_setzero_u8();
   const cv::v_float32x4 zero = cv::v_setzero_f32();
   // Where the evidence is positive: four float compares packed into 16 bytes of 0 or 0xff.
@@ -88,7 +90,8 @@ void MotionRegions::markPixels(const cv::Mat& evidence, const cv::Mat& mask) {
       const cv::v_uint8x16 free = cv::v_select(positive(e + x), candidate, none);
       cv::v_store(s + x, cv::v_select(cv::v_load(m + x) == none, free, in_mask));
     }
-    for (; x < evidence.cols; ++x) s[x] = m[x] != 0 ? kMask : (e[x] > 0 ? kCandidate : kNone);
+    for (; x < evidence.cols; ++x)
+      s[x] = m[x] != 0 ? kMaskPixel : (e[x] > 0 ? kCandidatePixel : kNotMoving);
   }
 }
 
@@ -98,7 +101,7 @@ bool MotionRegions::grow(int seed) {
   uchar* state = state_.data;
   region_.clear();
   stack_.assign(1, seed);
-  state[seed] = kSeen;
+  state[seed] = kGrownPixel;
   bool touches = false;
   while (!stack_.empty()) {
     const int p = stack_.back();
@@ -106,9 +109,9 @@ bool MotionRegions::grow(int seed) {
     region_.push_back(p);
     for (int offset : neighbours) {
       uchar& q = state[p + offset];
-      touches |= q == kMask;
-      if (q != kCandidate) continue;
-      q = kSeen;
+      touches |= q == kMaskPixel;
+      if (q != kCandidatePixel) continue;
+      q = kGrownPixel;
       stack_.push_back(p + offset);
     }
   }
