@@ -10,8 +10,9 @@
 // was, not two.
 #pragma once
 
-#include <opencv2/core.hpp>
 #include <vector>
+
+#include <opencv2/core.hpp>
 
 namespace movseg {
 
@@ -50,8 +51,8 @@ class MotionRegions {
   // CV_8U, the mask's size plus a border of one pixel that is never a candidate, so that a
   // pixel's eight neighbours are at fixed offsets without a bounds check.
   cv::Mat state_;
-  // CV_8U: this call's and the last call's regions over `least`: 2 where one joined the mask, 1
-  // where first seen.
+  // CV_8U: this call's and the last call's regions over `least` whose unary prefers foreground:
+  // 2 where one joined the mask, 1 where first seen.
   cv::Mat regions_, last_;
   bool has_last_ = false;
   std::vector<int> region_, stack_;  // indices into state_
