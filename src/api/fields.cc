@@ -3,8 +3,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
-#include <sstream>
+#include <iterator>
 #include <stdexcept>
 #include <type_traits>
 
@@ -48,10 +49,12 @@ FieldInfo describe(const char* name, double min, double max, int step, const cha
   return info;
 }
 
+// The shortest text that reads back as the same double: a run's recorded settings (movseg-run.json)
+// must give the same masks when set again, which six significant digits did not.
 std::string number(double value) {
-  std::ostringstream text;
-  text << value;
-  return text.str();
+  char text[32];
+  const std::to_chars_result end = std::to_chars(std::begin(text), std::end(text), value);
+  return std::string(text, end.ptr);
 }
 
 [[noreturn]] void reject(const FieldInfo& info, const std::string& rule, const std::string& got) {

@@ -1,6 +1,8 @@
 // The field tables (movseg/params.def, movseg/diagnostics.def) and what is generated from them:
 // Params::check(), setParam's parsing, the names and docs every binding shows.
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <iomanip>
 #include <limits>
 #include <set>
@@ -157,9 +159,18 @@ TEST(Fields, ChoicesAreNamesAndSeedsAreWholeUnsignedNumbers) {
 TEST(Fields, EveryValueRoundTripsThroughText) {
   Params changed;
   changed.motion_model = MotionModel::kHomography;
-  changed.lambda = 123.25;
   changed.seed = 77;
   changed.gmm_refine = false;
+  // Every real field at a value that needs all 17 significant digits (six were once printed:
+  // 123.456789 came back as 123.457).
+  for (const FieldInfo& field : paramFields()) {
+    if (field.type != FieldType::kReal) continue;
+    const double value = std::nextafter(field.min + (field.max - field.min) / 3, field.max);
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", value);
+    setParam(&changed, field.name, text);
+    ASSERT_EQ(std::get<double>(paramValue(changed, field.name)), value) << field.name;
+  }
   Params copy;
   for (const FieldInfo& field : paramFields()) {
     setParam(&copy, field.name, toText(paramValue(changed, field.name)));

@@ -21,9 +21,10 @@ TEST(LongRun, ResidentMemoryStaysFlatOver600Frames) {
 #endif
   const LongRunReport r = runLongStream(600, 100, 60);
   ASSERT_GT(r.warm_kib, 0) << "no /proc/self/status";
-  // Measured +4 KiB; a leak of a kilobyte a frame (20 MB over make long-run's 20,000) fails.
-  EXPECT_LT(r.end_kib - r.warm_kib, 512) << "RSS " << r.warm_kib << " KiB after 100 frames, "
-                                              << r.end_kib << " KiB after 600";
+  // Measured +4 KiB. A leak of half a kilobyte a frame (250 KiB over these 500 frames) fails
+  // here; room is left for one growth of the heap's top (glibc pads it by 128 KiB).
+  EXPECT_LT(r.end_kib - r.warm_kib, 256)
+      << "RSS " << r.warm_kib << " KiB after 100 frames, " << r.end_kib << " KiB after 600";
   EXPECT_EQ(r.motion_fallbacks, 0);
 }
 

@@ -21,6 +21,7 @@ TEST(Options, BadCliOptionsExitWithOneLine) {
   ASSERT_EQ(test::runCli("synth -o " + (dir / "clip") + " --frames 2 --size 64x48").exit_code, 0);
   const std::string segment = "segment " + (dir / "clip/frames") + " -o " + (dir / "out") + " -q ";
   const std::vector<std::pair<std::string, std::string>> cases{
+      {segment + "--frobnicate", "frobnicate"},
       {segment + "--gmm-k 0", "gmm_clusters"},
       {segment + "--lambda -1", "lambda"},
       {segment + "--lambda inf", "lambda"},
