@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-
 #include <opencv2/core/hal/intrin.hpp>
 
 #include "core/quantile.h"
@@ -100,8 +99,8 @@ double shareWithThePlane(const std::vector<cv::Point2f>& x, const std::vector<cv
   for (size_t i = 0; i < x.size(); ++i) {
     if (residuals[i] > inlier) continue;
     ++agreeing;
-    with_plane += (y[i] - x[i]).dot(plane_step[i]) > 0 &&
-                  cv::norm(plane_step[i]) > options.max_error;
+    with_plane +=
+        (y[i] - x[i]).dot(plane_step[i]) > 0 && cv::norm(plane_step[i]) > options.max_error;
   }
   return agreeing == 0 ? 0.0 : static_cast<double>(with_plane) / static_cast<double>(agreeing);
 }
@@ -136,10 +135,10 @@ StructureSums reflectedStructureSums(const cv::Mat& grey, cv::Point p) {
     const uchar* const* r = rows[j];
     for (int i = 0; i < kWindow; ++i) {
       const int* c = columns[i];
-      const int dx = (r[0][c[2]] - r[0][c[0]]) + 2 * (r[1][c[2]] - r[1][c[0]]) +
-                     (r[2][c[2]] - r[2][c[0]]);
-      const int dy = (r[2][c[0]] - r[0][c[0]]) + 2 * (r[2][c[1]] - r[0][c[1]]) +
-                     (r[2][c[2]] - r[0][c[2]]);
+      const int dx =
+          (r[0][c[2]] - r[0][c[0]]) + 2 * (r[1][c[2]] - r[1][c[0]]) + (r[2][c[2]] - r[2][c[0]]);
+      const int dy =
+          (r[2][c[0]] - r[0][c[0]]) + 2 * (r[2][c[1]] - r[0][c[1]]) + (r[2][c[2]] - r[0][c[2]]);
       sums.xx += dx * dx;
       sums.xy += dx * dy;
       sums.yy += dy * dy;
@@ -223,20 +222,18 @@ RansacOptions ransacOptions(const Params& params) {
 }  // namespace
 
 FlowCameraFitter::FlowCameraFitter(const Params& params)
-    : params_(params),
-      options_(ransacOptions(params)),
-      homography_(options_),
-      epipole_(options_) {}
+    : params_(params), options_(ransacOptions(params)), homography_(options_), epipole_(options_) {}
 
 void FlowCameraFitter::fit(const cv::Mat& flow, const std::vector<GridSample>& grid,
-                           const cv::Mat& moving, cv::RNG& rng,
-                           const cv::Matx33d* previous_model, FlowCamera* camera) {
+                           const cv::Mat& moving, cv::RNG& rng, const cv::Matx33d* previous_model,
+                           FlowCamera* camera) {
   camera->model = cv::Matx33d::eye();
   camera->at.clear();
   camera->to.clear();
   camera->background.clear();
   camera->fallback = false;
   camera->epipole.reset();
+  camera->depth_with_the_plane = false;
   // An element per sample at most: reserved at once, the vectors do not grow pair after pair as
   // more samples are kept.
   for (auto* points : {&camera->at, &camera->to, &x_, &y_, &plane_step_}) {
@@ -274,59 +271,68 @@ void FlowCameraFitter::fit(const cv::Mat& flow, const std::vector<GridSample>& g
   const auto& report = homography_.estimate(x_, y_, flow.size(), rng, previous_model);
   camera->fallback = !report.success;
   if (report.success) camera->model = report.model;
-  if (report.success && params_.parallax) camera->epipole = findEpipole(*camera, flow.size(), rng);
+  if (report.success && params_.parallax) findEpipole(flow.size(), rng, camera);
 }
 
-std::optional<cv::Vec3d> FlowCameraFitter::findEpipole(const FlowCamera& camera, cv::Size size,
-                                                       cv::RNG& rng) {
+void FlowCameraFitter::findEpipole(cv::Size size, cv::RNG& rng, FlowCamera* camera) {
   x_.clear();
   y_.clear();
   plane_step_.clear();
-  for (size_t i = 0; i < camera.at.size(); ++i) {
-    const cv::Point2f on_plane = applyModel(camera.model, camera.at[i]);
-    if (cv::norm(camera.to[i] - on_plane) <= 2 * options_.max_error) continue;
+  for (size_t i = 0; i < camera->at.size(); ++i) {
+    const cv::Point2f on_plane = applyModel(camera->model, camera->at[i]);
+    if (cv::norm(camera->to[i] - on_plane) <= 2 * options_.max_error) continue;
     x_.push_back(on_plane);
-    y_.push_back(camera.to[i]);
-    plane_step_.push_back(on_plane - camera.at[i]);
+    y_.push_back(camera->to[i]);
+    plane_step_.push_back(on_plane - camera->at[i]);
   }
-  const double share = static_cast<double>(x_.size()) / static_cast<double>(camera.at.size());
+  const double share = static_cast<double>(x_.size()) / static_cast<double>(camera->at.size());
   // Too few off the plane, or too few of them agreeing, for any rule: no epipole.
   double least_share = 1, least_agreement = 1;
   for (const DepthRule& rule : kDepthRules) {
     least_share = std::min(least_share, rule.share);
     least_agreement = std::min(least_agreement, rule.agreement);
   }
-  if (x_.size() < kMinOffPlane || share < least_share) return std::nullopt;
+  if (x_.size() < kMinOffPlane || share < least_share) return;
   const auto& report = epipole_.estimate(x_, y_, size, rng);
-  const double agreement =
-      static_cast<double>(report.num_inliers) / static_cast<double>(x_.size());
-  if (!report.success || agreement < least_agreement) return std::nullopt;
+  const double agreement = static_cast<double>(report.num_inliers) / static_cast<double>(x_.size());
+  if (!report.success || agreement < least_agreement) return;
   EpipoleEstimator::residuals(x_, y_, report.model, &residuals_);
   coverage_.reset(x_, size);
-  const int cells =
-      coverage_.evaluate(residuals_, options_.max_error * options_.max_error).cells;
+  const int cells = coverage_.evaluate(residuals_, options_.max_error * options_.max_error).cells;
   const double with_share = shareWithThePlane(x_, y_, plane_step_, residuals_, options_);
   const auto depth = [&](const DepthRule& rule) {
     return shows(rule, share, cells, with_share, agreement);
   };
-  if (std::none_of(std::begin(kDepthRules), std::end(kDepthRules), depth)) return std::nullopt;
-  return report.model;
+  if (std::none_of(std::begin(kDepthRules), std::end(kDepthRules), depth)) return;
+  camera->epipole = report.model;
+  camera->depth_with_the_plane = depth(kDepthWithThePlane) || depth(kDepthAgreed);
 }
 
-void residualMotion(const cv::Mat& flow_map, const cv::Mat& camera_map, const FlowCamera& camera,
-                    cv::Mat* residual) {
+void residualMotion(const cv::Mat& flow_map, const cv::Mat& camera_map, cv::Mat* residual) {
   residual->create(flow_map.size(), CV_32F);
   for (int y = 0; y < flow_map.rows; ++y) {
     const auto* by_flow = flow_map.ptr<cv::Point2f>(y);
-    const auto* on_plane = camera_map.ptr<cv::Point2f>(y);
+    const auto* by_scene = camera_map.ptr<cv::Point2f>(y);
     float* r = residual->ptr<float>(y);
-    if (camera.epipole) {
-      for (int x = 0; x < flow_map.cols; ++x) r[x] = residualOf(on_plane[x], by_flow[x], camera);
-    } else {  // squared here, rooted below: std::sqrt (errno) would keep this loop from vectorising
-      for (int x = 0; x < flow_map.cols; ++x) r[x] = squaredDistance(on_plane[x], by_flow[x]);
+    // Squared here, rooted below: std::sqrt (errno) would keep this loop from vectorising.
+    for (int x = 0; x < flow_map.cols; ++x) r[x] = squaredDistance(by_scene[x], by_flow[x]);
+  }
+  cv::sqrt(*residual, *residual);
+}
+
+void alongEpipolarLines(const cv::Mat& flow_map, const cv::Vec3d& epipole, cv::Mat* camera_map) {
+  const cv::Vec3f e(epipole);
+  for (int y = 0; y < flow_map.rows; ++y) {
+    const auto* by_flow = flow_map.ptr<cv::Point2f>(y);
+    auto* on_plane = camera_map->ptr<cv::Point2f>(y);
+    for (int x = 0; x < flow_map.cols; ++x) {
+      // The line's direction from the epipole, x * e_w - (e_x, e_y): defined at infinity too.
+      const cv::Point2f p = on_plane[x];
+      const cv::Point2f direction(p.x * e[2] - e[0], p.y * e[2] - e[1]);
+      const float length2 = direction.dot(direction);
+      if (length2 > 0) on_plane[x] = p + direction * ((by_flow[x] - p).dot(direction) / length2);
     }
   }
-  if (!camera.epipole) cv::sqrt(*residual, *residual);
 }
 
 void flowMap(const cv::Mat& flow, cv::Mat* map) {

@@ -3,10 +3,9 @@
 // leaves unexplained — the residual motion — at every pixel.
 #pragma once
 
+#include <opencv2/core.hpp>
 #include <optional>
 #include <vector>
-
-#include <opencv2/core.hpp>
 
 #include "motion/estimators.h"
 #include "motion/ransac.h"
@@ -24,6 +23,9 @@ struct FlowCamera {
   // Plane + parallax: when the static scene beyond the model's plane shows depth, the epipole
   // (homogeneous, previous frame) that its residual motion points along.
   std::optional<cv::Vec3d> epipole;
+  // Whether a rule that asks the off-plane samples to move with the plane read it (a mover the
+  // camera follows moves against the plane, so such a reading cannot be one).
+  bool depth_with_the_plane = false;
 };
 
 // A pixel the camera is fitted at, and its texture.
@@ -57,7 +59,8 @@ class FlowCameraFitter {
            cv::RNG& rng, const cv::Matx33d* previous_model, FlowCamera* camera);
 
  private:
-  std::optional<cv::Vec3d> findEpipole(const FlowCamera& camera, cv::Size size, cv::RNG& rng);
+  // Sets camera->epipole and depth_with_the_plane.
+  void findEpipole(cv::Size size, cv::RNG& rng, FlowCamera* camera);
 
   Params params_;
   RansacOptions options_;
@@ -76,16 +79,22 @@ class FlowCameraFitter {
 // Computed at the samples alone, a sixtieth of the pixels at the default step.
 float minEigenValueAt(const cv::Mat& grey, cv::Point p);
 
-// The motion the camera does not explain at every pixel (CV_32F): |p + flow(p) - model(p)|,
-// or with an epipole only its part across the epipolar line through model(p); `flow_map` holds
-// p + flow(p) and `camera_map` model(p), as flowMap() and cameraMap() make them.
-void residualMotion(const cv::Mat& flow_map, const cv::Mat& camera_map, const FlowCamera& camera,
-                    cv::Mat* residual);
+// The motion the static scene does not explain at every pixel (CV_32F): |p + flow(p) - s(p)|,
+// where `flow_map` holds p + flow(p) and `camera_map` s(p), the static scene's explanation of
+// p: model(p) as cameraMap() makes it, or with an epipole that point moved along its epipolar
+// line (alongEpipolarLines()), which leaves the residual's part across the line.
+void residualMotion(const cv::Mat& flow_map, const cv::Mat& camera_map, cv::Mat* residual);
 
 // Where each pixel of the current frame came from in the previous one (CV_32FC2, for
 // cv::remap): p + flow(p) by the flow, model(p) by the camera.
 void flowMap(const cv::Mat& flow, cv::Mat* map);
 void cameraMap(const cv::Matx33d& model, cv::Size size, cv::Mat* map);
+
+// A static scene with depth explains a pixel's flow by any point of its epipolar line: each
+// point model(p) of `camera_map` (CV_32FC2, as cameraMap() makes it) moved along the line
+// through it and `epipole` (homogeneous) to the point nearest p + flow(p) (`flow_map`), in
+// place. At the epipole itself, where the line has no direction, model(p) stays.
+void alongEpipolarLines(const cv::Mat& flow_map, const cv::Vec3d& epipole, cv::Mat* camera_map);
 
 // residualMotion() at the samples of `camera`, into `residuals`.
 void residualAtSamples(const FlowCamera& camera, std::vector<float>* residuals);

@@ -5,10 +5,10 @@
 // add what one pair cannot see; a graph cut on the evidence and the image's edges makes the mask,
 // whose outline a guided filter then moves onto the edges themselves.
 // A scene cut empties the mask and the memory: what the new scene moves is learnt anew.
+#include <algorithm>
 #include <bitset>
-#include <optional>
-
 #include <opencv2/imgproc.hpp>
+#include <optional>
 
 #include "classify/scene_cut.h"
 #include "core/frame.h"
@@ -32,7 +32,7 @@ namespace {
 // Phase 1: the frame at the working scale and its flow to the previous frame — all that does not
 // need the previous frame's mask, so that it runs while that mask is made (StreamSegmenter).
 struct DenseAnalysis : Analysis {
-  cv::Mat bgr;                      // segmentation scale
+  cv::Mat bgr;  // segmentation scale
   cv::Mat grey;
   std::vector<GridSample> samples;  // where the camera is fitted
   cv::Mat flow;                     // to the previous frame; empty on a first frame
@@ -184,17 +184,23 @@ class RepeatedFrames {
 // our 3-D scenes 0.853 -> 0.869, DAVIS J 0.598 -> 0.597. Keeping the last epipole over pairs
 // without one, a hysteresis, cost DAVIS 0.011 J where water shows depth now and then
 // (docs/design.md, "Parallax").
+// A stream's first pairs are judged by the pairs there are: counted as pairs without depth, they
+// kept it from the first two, whose mask took the near posts and ground that memory then held
+// (the independent dolly). On the first pair, with no other to outvote a mover the camera
+// follows, only a reading with the plane counts (blackswan's swan reads as depth otherwise).
 class PersistentDepth {
  public:
   void settle(FlowCamera* camera) {
     recent_ <<= 1;
-    recent_[0] = camera->epipole.has_value();
-    if (recent_.count() <= kPairs / 2) camera->epipole.reset();
+    recent_[0] = camera->epipole.has_value() && (seen_ > 0 || camera->depth_with_the_plane);
+    seen_ = std::min(seen_ + 1, kPairs);
+    if (static_cast<int>(recent_.count()) <= seen_ / 2) camera->epipole.reset();
   }
 
  private:
   static constexpr int kPairs = 5;
   std::bitset<kPairs> recent_;  // bit i: the pair i pairs before this one had an epipole
+  int seen_ = 0;                // pairs judged since the stream began, up to kPairs
 };
 
 class DensePipeline : public Pipeline {
@@ -339,7 +345,10 @@ class DensePipeline : public Pipeline {
     if (!camera_.fallback) last_model_ = camera_.model;
     depth_.settle(&camera_);
     cameraMap(camera_.model, a.grey.size(), &camera_map_);
-    residualMotion(a.flow_map, camera_map_, camera_, &residual_);
+    // With depth read, the residual and the photometric check measure against the same static
+    // scene: one whose points may lie anywhere along their epipolar lines.
+    if (camera_.epipole) alongEpipolarLines(a.flow_map, *camera_.epipole, &camera_map_);
+    residualMotion(a.flow_map, camera_map_, &residual_);
     // The fit maps current to previous working pixels; eq. (4) warps previous to current.
     to_current_ = camera_.model.inv();
     has_pair_ = true;
@@ -397,7 +406,7 @@ class DensePipeline : public Pipeline {
   Params params_;
   DenseFlow flow_;
   FlowCameraFitter camera_fitter_;
-  FlowCamera camera_;  // the pair's, in the buffers of the last
+  FlowCamera camera_;                                  // the pair's, in the buffers of the last
   std::vector<float> sample_residuals_, unconfirmed_;  // scratch of unconfirmedResiduals()
   ColourModel colour_;
   cv::RNG rng_;
@@ -420,10 +429,10 @@ class DensePipeline : public Pipeline {
   // is tried on).
   std::optional<cv::Matx33d> last_model_;
   PreviousFrame previous_;
-  bool has_pair_ = false;    // the last frame had a camera model: eq. (4)'s I' can be made
+  bool has_pair_ = false;   // the last frame had a camera model: eq. (4)'s I' can be made
   cv::Matx33d to_current_;  // that model, previous to current working pixels
   cv::Size input_size_;
-  cv::Mat halved_;  // scratch of downscale()
+  cv::Mat halved_;                        // scratch of downscale()
   FramePool bgr_buffers_, grey_buffers_;  // of the analyses' images, which Remember keeps
 };
 

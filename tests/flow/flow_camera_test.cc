@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
-
 #include <opencv2/imgproc.hpp>
 
 #include "motion/model.h"
@@ -111,7 +110,7 @@ TEST(FlowCamera, FitsTheCameraAroundAMarkedMoverAndLeavesItsMotionAsResidual) {
   cv::Mat flow_map, camera_map, residual;
   flowMap(flow, &flow_map);
   cameraMap(fit.model, size, &camera_map);
-  residualMotion(flow_map, camera_map, fit, &residual);
+  residualMotion(flow_map, camera_map, &residual);
   EXPECT_NEAR(residual.at<float>(55, 75), 5.0, 0.01);  // |(4, -3)|
   EXPECT_NEAR(residual.at<float>(10, 10), 0.0, 0.01);
   EXPECT_NEAR(residual.at<float>(110, 150), 0.0, 0.01);
@@ -151,8 +150,8 @@ TEST(FlowCamera, OfTwoEquallySupportedPlanesTheLastPairsIsKept) {
   }
 }
 
-// The fit's reading of depth from a flow field (current -> previous) of `size`, given per pixel.
-bool readsDepth(cv::Size size, const std::function<cv::Point2f(int x, int y)>& flow_at) {
+// The fit of a flow field (current -> previous) of `size`, given per pixel.
+FlowCamera fitOf(cv::Size size, const std::function<cv::Point2f(int x, int y)>& flow_at) {
   cv::Mat flow(size, CV_32FC2);
   for (int y = 0; y < size.height; ++y) {
     for (int x = 0; x < size.width; ++x) {
@@ -166,17 +165,24 @@ bool readsDepth(cv::Size size, const std::function<cv::Point2f(int x, int y)>& f
   gridSamples(test::greyTexture(size, 4), params.flow_sample_step, cv::Mat(), &samples);
   const FlowCamera fit = fitFlowCamera(flow, samples, cv::Mat(), params, rng);
   EXPECT_FALSE(fit.fallback);
-  return fit.epipole.has_value();
+  return fit;
 }
 
-// A camera moving sideways: the far wall's flow is 2 px to the right, and the lowest 30 % of
-// the rows of a 160x120 view, a strip too small to show depth everywhere (under 28 cells), move
-// `strip(y)`.
+// Whether the fit reads depth.
+bool readsDepth(cv::Size size, const std::function<cv::Point2f(int x, int y)>& flow_at) {
+  return fitOf(size, flow_at).epipole.has_value();
+}
+
+// A camera moving sideways: the far wall's flow is 2 px to the right, and the rows of a 160x120
+// view from `top` down move `strip(y - top)`.
+FlowCamera fitOfStrip(int top, const std::function<cv::Point2f(int)>& strip) {
+  return fitOf({160, 120},
+               [&](int, int y) { return y < top ? cv::Point2f(2, 0) : strip(y - top); });
+}
+
+// The lowest 30 % of the rows: a strip too small to show depth everywhere (under 28 cells).
 bool readsDepthOfStrip(const std::function<cv::Point2f(int)>& strip) {
-  constexpr int kStripTop = 84;
-  return readsDepth({160, 120}, [&](int, int y) {
-    return y < kStripTop ? cv::Point2f(2, 0) : strip(y - kStripTop);
-  });
+  return fitOfStrip(84, strip).epipole.has_value();
 }
 
 // The same wall in a 320x240 view with three near posts 8 px wide from top to bottom, post i
@@ -210,6 +216,70 @@ TEST(FlowCamera, NearGroundMovingWithThePlaneIsDepth) {
 // plane: not depth, however well its motion agrees on an epipole.
 TEST(FlowCamera, AMoverTheCameraFollowsIsNotDepth) {
   EXPECT_FALSE(readsDepthOfStrip([](int) { return cv::Point2f(0, 0); }));
+}
+
+// Which rule read depth: the near ground moves with the plane; bands above and below the wall
+// standing still (45 % of the rows, 32 cells) show depth everywhere, against the plane, as a
+// large mover the camera follows would.
+TEST(FlowCamera, DepthSaysWhetherItMovedWithThePlane) {
+  const FlowCamera ground =
+      fitOfStrip(84, [](int row) { return cv::Point2f(3.5f + 0.08f * row, 0); });
+  ASSERT_TRUE(ground.epipole.has_value());
+  EXPECT_TRUE(ground.depth_with_the_plane);
+  const FlowCamera still = fitOf({160, 120}, [](int, int y) {
+    return y < 27 || y >= 93 ? cv::Point2f(0, 0) : cv::Point2f(2, 0);
+  });
+  ASSERT_TRUE(still.epipole.has_value());
+  EXPECT_FALSE(still.depth_with_the_plane);
+}
+
+// A static scene with depth explains a flow by any point of the pixel's epipolar line: moved
+// there, the camera's map leaves the flow's part across the line as the residual. An epipole
+// inside the view (a camera moving forwards) and one at infinity (sideways).
+TEST(FlowCamera, AlongEpipolarLinesLeavesTheMotionAcrossTheLine) {
+  const cv::Size size(8, 6);
+  cv::Mat camera_map, flow_map(size, CV_32FC2), residual;
+  cameraMap(cv::Matx33d::eye(), size, &camera_map);
+  // From the epipole (2, 3): 1.5 px outwards along the line and 0.5 px across it at every pixel
+  // but the epipole's own, whose line has no direction: its flow is all residual.
+  const cv::Point2f epipole(2, 3);
+  for (int y = 0; y < size.height; ++y) {
+    for (int x = 0; x < size.width; ++x) {
+      const cv::Point2f p(static_cast<float>(x), static_cast<float>(y));
+      const cv::Point2f outwards =
+          p == epipole ? cv::Point2f(1, 0) : (p - epipole) / cv::norm(p - epipole);
+      const cv::Point2f across(-outwards.y, outwards.x);
+      flow_map.at<cv::Point2f>(y, x) = p + 1.5f * outwards + 0.5f * across;
+    }
+  }
+  alongEpipolarLines(flow_map, cv::Vec3d(2, 3, 1), &camera_map);
+  residualMotion(flow_map, camera_map, &residual);
+  for (int y = 0; y < size.height; ++y) {
+    for (int x = 0; x < size.width; ++x) {
+      const cv::Point2f p(static_cast<float>(x), static_cast<float>(y));
+      const cv::Point2f on_line = camera_map.at<cv::Point2f>(y, x);
+      if (p == epipole) {
+        EXPECT_EQ(on_line, p);
+        EXPECT_NEAR(residual.at<float>(y, x), std::hypot(1.5, 0.5), 1e-5);
+        continue;
+      }
+      EXPECT_NEAR(residual.at<float>(y, x), 0.5, 1e-5) << p;
+      EXPECT_NEAR(cv::norm(on_line - p), 1.5, 1e-5) << p;
+    }
+  }
+  // At infinity along x: the lines are the rows, a flow of (5, -3) leaves 3 px.
+  cameraMap(cv::Matx33d::eye(), size, &camera_map);
+  for (int y = 0; y < size.height; ++y) {
+    for (int x = 0; x < size.width; ++x) {
+      flow_map.at<cv::Point2f>(y, x) =
+          cv::Point2f(static_cast<float>(x) + 5, static_cast<float>(y) - 3);
+    }
+  }
+  alongEpipolarLines(flow_map, cv::Vec3d(1, 0, 0), &camera_map);
+  residualMotion(flow_map, camera_map, &residual);
+  EXPECT_EQ(camera_map.at<cv::Point2f>(4, 6), cv::Point2f(11, 4));
+  EXPECT_NEAR(cv::norm(residual, cv::NORM_INF), 3.0, 1e-6);
+  EXPECT_NEAR(cv::norm(residual, cv::NORM_L1), 3.0 * size.area(), 1e-4);
 }
 
 }  // namespace
