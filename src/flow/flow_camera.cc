@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+
 #include <opencv2/core/hal/intrin.hpp>
 
 #include "core/quantile.h"
@@ -99,8 +100,8 @@ double shareWithThePlane(const std::vector<cv::Point2f>& x, const std::vector<cv
   for (size_t i = 0; i < x.size(); ++i) {
     if (residuals[i] > inlier) continue;
     ++agreeing;
-    with_plane +=
-        (y[i] - x[i]).dot(plane_step[i]) > 0 && cv::norm(plane_step[i]) > options.max_error;
+    with_plane += (y[i] - x[i]).dot(plane_step[i]) > 0 &&
+                  cv::norm(plane_step[i]) > options.max_error;
   }
   return agreeing == 0 ? 0.0 : static_cast<double>(with_plane) / static_cast<double>(agreeing);
 }
@@ -135,10 +136,10 @@ StructureSums reflectedStructureSums(const cv::Mat& grey, cv::Point p) {
     const uchar* const* r = rows[j];
     for (int i = 0; i < kWindow; ++i) {
       const int* c = columns[i];
-      const int dx =
-          (r[0][c[2]] - r[0][c[0]]) + 2 * (r[1][c[2]] - r[1][c[0]]) + (r[2][c[2]] - r[2][c[0]]);
-      const int dy =
-          (r[2][c[0]] - r[0][c[0]]) + 2 * (r[2][c[1]] - r[0][c[1]]) + (r[2][c[2]] - r[0][c[2]]);
+      const int dx = (r[0][c[2]] - r[0][c[0]]) + 2 * (r[1][c[2]] - r[1][c[0]]) +
+                     (r[2][c[2]] - r[2][c[0]]);
+      const int dy = (r[2][c[0]] - r[0][c[0]]) + 2 * (r[2][c[1]] - r[0][c[1]]) +
+                     (r[2][c[2]] - r[0][c[2]]);
       sums.xx += dx * dx;
       sums.xy += dx * dy;
       sums.yy += dy * dy;
@@ -222,11 +223,14 @@ RansacOptions ransacOptions(const Params& params) {
 }  // namespace
 
 FlowCameraFitter::FlowCameraFitter(const Params& params)
-    : params_(params), options_(ransacOptions(params)), homography_(options_), epipole_(options_) {}
+    : params_(params),
+      options_(ransacOptions(params)),
+      homography_(options_),
+      epipole_(options_) {}
 
 void FlowCameraFitter::fit(const cv::Mat& flow, const std::vector<GridSample>& grid,
-                           const cv::Mat& moving, cv::RNG& rng, const cv::Matx33d* previous_model,
-                           FlowCamera* camera) {
+                           const cv::Mat& moving, cv::RNG& rng,
+                           const cv::Matx33d* previous_model, FlowCamera* camera) {
   camera->model = cv::Matx33d::eye();
   camera->at.clear();
   camera->to.clear();
@@ -294,11 +298,13 @@ void FlowCameraFitter::findEpipole(cv::Size size, cv::RNG& rng, FlowCamera* came
   }
   if (x_.size() < kMinOffPlane || share < least_share) return;
   const auto& report = epipole_.estimate(x_, y_, size, rng);
-  const double agreement = static_cast<double>(report.num_inliers) / static_cast<double>(x_.size());
+  const double agreement =
+      static_cast<double>(report.num_inliers) / static_cast<double>(x_.size());
   if (!report.success || agreement < least_agreement) return;
   EpipoleEstimator::residuals(x_, y_, report.model, &residuals_);
   coverage_.reset(x_, size);
-  const int cells = coverage_.evaluate(residuals_, options_.max_error * options_.max_error).cells;
+  const int cells =
+      coverage_.evaluate(residuals_, options_.max_error * options_.max_error).cells;
   const double with_share = shareWithThePlane(x_, y_, plane_step_, residuals_, options_);
   const auto depth = [&](const DepthRule& rule) {
     return shows(rule, share, cells, with_share, agreement);

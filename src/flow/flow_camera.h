@@ -3,9 +3,10 @@
 // leaves unexplained — the residual motion — at every pixel.
 #pragma once
 
-#include <opencv2/core.hpp>
 #include <optional>
 #include <vector>
+
+#include <opencv2/core.hpp>
 
 #include "motion/estimators.h"
 #include "motion/ransac.h"

@@ -7,8 +7,9 @@
 // A scene cut empties the mask and the memory: what the new scene moves is learnt anew.
 #include <algorithm>
 #include <bitset>
-#include <opencv2/imgproc.hpp>
 #include <optional>
+
+#include <opencv2/imgproc.hpp>
 
 #include "classify/scene_cut.h"
 #include "core/frame.h"
@@ -32,7 +33,7 @@ namespace {
 // Phase 1: the frame at the working scale and its flow to the previous frame — all that does not
 // need the previous frame's mask, so that it runs while that mask is made (StreamSegmenter).
 struct DenseAnalysis : Analysis {
-  cv::Mat bgr;  // segmentation scale
+  cv::Mat bgr;                      // segmentation scale
   cv::Mat grey;
   std::vector<GridSample> samples;  // where the camera is fitted
   cv::Mat flow;                     // to the previous frame; empty on a first frame
@@ -406,7 +407,7 @@ class DensePipeline : public Pipeline {
   Params params_;
   DenseFlow flow_;
   FlowCameraFitter camera_fitter_;
-  FlowCamera camera_;                                  // the pair's, in the buffers of the last
+  FlowCamera camera_;  // the pair's, in the buffers of the last
   std::vector<float> sample_residuals_, unconfirmed_;  // scratch of unconfirmedResiduals()
   ColourModel colour_;
   cv::RNG rng_;
@@ -429,10 +430,10 @@ class DensePipeline : public Pipeline {
   // is tried on).
   std::optional<cv::Matx33d> last_model_;
   PreviousFrame previous_;
-  bool has_pair_ = false;   // the last frame had a camera model: eq. (4)'s I' can be made
+  bool has_pair_ = false;    // the last frame had a camera model: eq. (4)'s I' can be made
   cv::Matx33d to_current_;  // that model, previous to current working pixels
   cv::Size input_size_;
-  cv::Mat halved_;                        // scratch of downscale()
+  cv::Mat halved_;  // scratch of downscale()
   FramePool bgr_buffers_, grey_buffers_;  // of the analyses' images, which Remember keeps
 };
 

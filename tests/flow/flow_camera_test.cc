@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+
 #include <opencv2/imgproc.hpp>
 
 #include "motion/model.h"

@@ -2,19 +2,19 @@
 // J and F of `dense` on every one of the 15 sequences and their means, `paper`'s J on every one
 // (the reproduction's figures), and the means of `dense`, `paper` and MOG2 with their error
 // rates, as printed there. A change that moves them must update README.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <string>
-#include <vector>
 
 #include "eval/metrics.h"
 #include "movseg/segmenter.h"
@@ -25,7 +25,7 @@ namespace {
 
 struct Published {
   const char* sequence;
-  double j, f;  // dense
+  double j, f;    // dense
   double paper_j;
 };
 
