@@ -311,7 +311,9 @@ void FlowCameraFitter::findEpipole(cv::Size size, cv::RNG& rng, FlowCamera* came
   };
   if (std::none_of(std::begin(kDepthRules), std::end(kDepthRules), depth)) return;
   camera->epipole = report.model;
-  camera->depth_with_the_plane = depth(kDepthWithThePlane) || depth(kDepthAgreed);
+  camera->depth_with_the_plane =
+      std::any_of(std::begin(kDepthRules), std::end(kDepthRules),
+                  [&](const DepthRule& rule) { return rule.with_plane > 0 && depth(rule); });
 }
 
 void residualMotion(const cv::Mat& flow_map, const cv::Mat& camera_map, cv::Mat* residual) {
