@@ -219,6 +219,20 @@ TEST(FlowCamera, AMoverTheCameraFollowsIsNotDepth) {
   EXPECT_FALSE(readsDepthOfStrip([](int) { return cv::Point2f(0, 0); }));
 }
 
+// The plane at a middle depth: the near ground below it moves further than it, a far band
+// above it (at infinity) not at all, against it; both along lines through one epipole. Two in
+// five of those agreeing move against the plane (kDepthWithThePlane allows one in four at
+// most), the share and the cells are under kDepthEverywhere's: depth, read by the rule that
+// asks for agreement. Asking there for three quarters with the plane, as before, fails this.
+TEST(FlowCamera, AStaticSceneOnBothSidesOfThePlaneIsDepth) {
+  const FlowCamera fit = fitOf({160, 120}, [](int, int y) {
+    if (y < 15) return cv::Point2f(0, 0);
+    return y < 96 ? cv::Point2f(2, 0) : cv::Point2f(3.5f + 0.08f * (y - 96), 0);
+  });
+  ASSERT_TRUE(fit.epipole.has_value());
+  EXPECT_TRUE(fit.depth_with_the_plane);
+}
+
 // Which rule read depth: the near ground moves with the plane; bands above and below the wall
 // standing still (45 % of the rows, 32 cells) show depth everywhere, against the plane, as a
 // large mover the camera follows would.
