@@ -24,8 +24,9 @@ struct FlowCamera {
   // Plane + parallax: when the static scene beyond the model's plane shows depth, the epipole
   // (homogeneous, previous frame) that its residual motion points along.
   std::optional<cv::Vec3d> epipole;
-  // Whether a rule that asks the off-plane samples to move with the plane read it (a mover the
-  // camera follows moves against the plane, so such a reading cannot be one).
+  // Whether a rule that asks a share of the off-plane samples to move with the plane read it (a
+  // mover the camera follows moves against the plane, all of it, so such a reading cannot be
+  // one).
   bool depth_with_the_plane = false;
 };
 
