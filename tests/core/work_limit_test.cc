@@ -53,15 +53,25 @@ TEST(WorkLimit, LowersTheCostliestParametersIntoEveryBudget) {
   ASSERT_TRUE(limit.lowered);
   const Params& p = limit.params;
   EXPECT_NO_THROW(p.check());
+  // Each cost within its budget, and lowered no further than it needs: a limiter that set
+  // every parameter to its minimum would pass the upper bounds alone.
   const double align_pixels = p.alignment_width * (p.alignment_width * 2160.0 / 3840);
   EXPECT_LE(align_pixels, 2e6 * 1.001);
-  EXPECT_LE(p.max_corners + align_pixels / (p.edge_cell * p.edge_cell), 30000);
+  EXPECT_GE(align_pixels, 2e6 * 0.99);
+  const double features = p.max_corners + align_pixels / (p.edge_cell * p.edge_cell);
+  EXPECT_LE(features, 30000);
+  EXPECT_GE(features, 30000 * 0.9);
   const double per_track = 101.0 * 101 * 9 + 101.0 * 101;
   EXPECT_LE(p.max_tracked_features * per_track, 2e7);
-  EXPECT_LE(static_cast<double>(p.ransac_iterations) * 100 * p.max_tracked_features, 1e7);
+  EXPECT_GE(p.max_tracked_features * per_track, 2e7 * 0.99);
+  const double ransac = static_cast<double>(p.ransac_iterations) * 100 * p.max_tracked_features;
+  EXPECT_LE(ransac, 1e7);
+  EXPECT_GE(ransac, 1e7 * 0.99);
   const cv::Size seg(p.segmentation_width, p.segmentation_width * 2160 / 3840);
   EXPECT_LE(seg.area(), 1e6 * 1.001);
+  EXPECT_GE(seg.area(), 1e6 * 0.99);
   EXPECT_LE(32.0 * p.cut_band * (seg.width + seg.height), 400000);
+  EXPECT_GE(32.0 * (p.cut_band + 1) * (seg.width + seg.height), 400000);  // the widest that fits
   EXPECT_LE(p.difference_blur * seg.area(), 2e7 * 1.001);
   // What is not a cost stays as asked.
   EXPECT_EQ(p.gmm_clusters, 256);
@@ -94,10 +104,12 @@ TEST(WorkLimit, LowersOnlyWhatTheMethodUses) {
   const Params& p = limit.params;
   EXPECT_NO_THROW(p.check());
   EXPECT_LE(p.segmentation_width * (p.segmentation_width * 2160.0 / 3840), 1e6 * 1.001);
+  EXPECT_GE(p.segmentation_width * (p.segmentation_width * 2160.0 / 3840), 1e6 * 0.99);
   const double samples =
       p.segmentation_width * (p.segmentation_width * 2160.0 / 3840) / (p.flow_sample_step * p.flow_sample_step);
   EXPECT_LE(samples, 30000);
   EXPECT_LE(p.ransac_iterations * samples, 1e7);
+  EXPECT_GE(p.ransac_iterations * samples, 1e7 * 0.9);
   EXPECT_EQ(p.alignment_width, 0);
   EXPECT_EQ(p.max_corners, 100000);
   EXPECT_EQ(p.cut_band, 0);

@@ -140,7 +140,7 @@ cv::Mat lit(const cv::Mat& frame, float gain) {
 // benched as README's command does. Without the fitted change of light the flicker's cows gave
 // 0.26 and the step's dog 0.79; without repeats taken as such, the repeated cows 0.62. In the
 // same bench the 15 sequences as they are: README's speed table's 320x240 row, J 0.601 and F
-// 0.585 (about a minute in all).
+// 0.583 (about a minute in all).
 TEST(DenseDavis, At320x240GivesReadmesFigures) {
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
   GTEST_SKIP() << "left to the unsanitized build: the bonnet test runs `dense` on DAVIS there";
