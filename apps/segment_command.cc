@@ -69,7 +69,7 @@ void addSegmentCommand(CLI::App& app) {
   auto threads = std::make_shared<int>(1);
   CLI::App* cmd = app.add_subcommand("segment", "Segment the moving objects of a video");
   cmd->add_option("INPUT", *inputs,
-                  "Video file, folder of images (sorted by name), camera index or stream URL; "
+                  "Video file, folder of images (in number order), camera index or stream URL; "
                   "with several, each one's outputs go to OUTDIR/<name>/")
       ->required();
   cmd->add_option("-o,--output", options->output_dir, "Folder for the masks 00000.png, ...")

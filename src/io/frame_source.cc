@@ -177,6 +177,30 @@ std::vector<std::string> folderImages(const std::string& folder) {
 
 }  // namespace
 
+bool inNumberOrder(const std::string& a, const std::string& b) {
+  const auto digit = [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; };
+  size_t i = 0, j = 0;
+  while (i < a.size() && j < b.size()) {
+    if (!digit(a[i]) || !digit(b[j])) {
+      if (a[i] != b[j]) return a[i] < b[j];
+      ++i, ++j;
+      continue;
+    }
+    // Two runs of digits: by value (more significant digits, then the digits themselves), the
+    // leading zeros left aside.
+    const size_t a_end = std::find_if_not(a.begin() + i, a.end(), digit) - a.begin();
+    const size_t b_end = std::find_if_not(b.begin() + j, b.end(), digit) - b.begin();
+    while (i + 1 < a_end && a[i] == '0') ++i;
+    while (j + 1 < b_end && b[j] == '0') ++j;
+    if (a_end - i != b_end - j) return a_end - i < b_end - j;
+    const int order = a.compare(i, a_end - i, b, j, b_end - j);
+    if (order != 0) return order < 0;
+    i = a_end, j = b_end;
+  }
+  if (i < a.size() || j < b.size()) return j < b.size();  // a prefix of the other comes first
+  return a < b;  // equal in value (001.png, 1.png): by name, so the order is total
+}
+
 std::vector<std::string> listImages(const std::string& folder) {
   std::vector<std::string> files;
   for (const auto& entry : fs::directory_iterator(folder)) {
@@ -185,7 +209,7 @@ std::vector<std::string> listImages(const std::string& folder) {
       files.push_back(entry.path().string());
     }
   }
-  std::sort(files.begin(), files.end());
+  std::sort(files.begin(), files.end(), inNumberOrder);
   return files;
 }
 

@@ -1,5 +1,5 @@
 // Where frames come from, one input grammar for every command: a video file or stream URL
-// (decoded by FFmpeg), a folder of images sorted by name, a sequence folder holding frames/
+// (decoded by FFmpeg), a folder of images in number order, a sequence folder holding frames/
 // (DAVIS, `movseg synth`), a printf pattern of numbered images (frames/%05d.jpg), or a camera
 // index.
 #pragma once
@@ -46,8 +46,13 @@ class FrameSource {
 // a URL. Outputs must stay out of it.
 std::string inputPath(const std::string& input);
 
+// Whether name a comes before b with the runs of digits in them compared as numbers: 2.png
+// before 10.png, as a camera or a script that does not pad its numbers means them (and as
+// `eval` matches masks to frames); zero-padded names keep their order by name.
+bool inNumberOrder(const std::string& a, const std::string& b);
+
 // The image files of a folder (by extension, case-insensitive; hidden ones, such as macOS's
-// `._00002.png`, are not frames), sorted by name.
+// `._00002.png`, are not frames), in number order (inNumberOrder).
 std::vector<std::string> listImages(const std::string& folder);
 
 // cv::imread, but an empty Mat for every file it cannot decode: OpenCV throws instead when a
