@@ -13,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
@@ -171,6 +172,24 @@ nlohmann::json runIdentity(const SegmentOptions& options) {
 // An output folder holds the outputs of one run, described by its manifest. A folder holding
 // another run's (a manifest, or numbered masks without one) is refused unless `overwrite`, which
 // removes that run's masks, debug pictures and overlay frames first: runs never mix silently.
+// The nearest of `path` and its parents that exists.
+fs::path existingAncestor(const fs::path& path) {
+  fs::path at = fs::absolute(path).lexically_normal();
+  std::error_code error;
+  while (at.has_relative_path() && !fs::exists(at, error)) at = at.parent_path();
+  return at;
+}
+
+// Removes `path` and its parents below `ancestor` (existingAncestor() before they were made), as
+// long as they are empty.
+void removeEmptyFoldersUpTo(const fs::path& path, const fs::path& ancestor) {
+  std::error_code error;
+  for (fs::path at = fs::absolute(path).lexically_normal(); at != ancestor && at.has_relative_path();
+       at = at.parent_path()) {
+    if (!fs::remove(at, error)) return;  // not empty, or not there
+  }
+}
+
 void claimOutputFolder(const SegmentOptions& options) {
   makeOutputFolder(options.output_dir);
   const fs::path dir(options.output_dir);
@@ -262,6 +281,8 @@ class OverlayWriter {
     fps_ = std::isfinite(fps) && fps > 0 && fps <= 1000 ? fps : 25.0;
     if (target_.empty()) return;
     if (isVideoPath(target_)) {
+      // Tried now, before any mask is written: the video itself opens at the first frame.
+      checkOutputFile(target_);
       temporary_ = temporaryPath(target_, /*keep_extension=*/true);
     } else {
       makeOutputFolder(target_);
@@ -654,8 +675,18 @@ SegmentSummary runSegmentation(const SegmentOptions& options) {
     return summary;
   }
   const SourceReport opened = source->report();
+  const fs::path existing = existingAncestor(options.output_dir);
   claimOutputFolder(options);
-  RunOutputs outputs(options, opened.fps);
+  std::optional<RunOutputs> opened_outputs;
+  try {
+    opened_outputs.emplace(options, opened.fps);
+  } catch (const std::exception&) {
+    // An output that cannot be written is refused before any work: nothing is left behind,
+    // not even the folders this run made for it.
+    removeEmptyFoldersUpTo(options.output_dir, existing);
+    throw;
+  }
+  RunOutputs& outputs = *opened_outputs;
 
   SegmentSummary summary;
   int total = opened.expected_frames;

@@ -357,7 +357,14 @@ TEST_F(OutputFaults, UnwritableReportPathsFailBeforeTheWork) {
   const test::CommandResult stats =
       test::runCli("segment " + frames() + " -o " + dir_ / "out" + " --stats " + dir_ / "a-folder");
   test::expectOneLineError(stats, "a-folder", test::kExitRunFailed);
-  EXPECT_FALSE(fs::exists(dir_ / "out/00000.png"));
+  // Refused before any work: no mask, and not even the output folder the run would have made.
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+  // An overlay video in a folder that does not exist: refused before the first mask too (its
+  // writer opens at the first frame), the output folder and its new parent removed again.
+  const test::CommandResult video = test::runCli("segment " + frames() + " -o " + dir_ / "new/out" +
+                                                 " --overlay " + dir_ / "missing/overlay.mkv");
+  test::expectOneLineError(video, "missing/overlay.mkv", test::kExitRunFailed);
+  EXPECT_FALSE(fs::exists(dir_ / "new"));
   for (const std::string& report : {dir_ / "a-folder", dir_ / "a-file/x.json"}) {
     SCOPED_TRACE(report);
     // eval prints its table, bench its table and progress, only once they have done the work.
