@@ -13,11 +13,16 @@ namespace {
 const std::map<std::string, std::string> kAliases{
     {"static_camera", "--static"}, {"motion_model", "--model"}, {"gmm_clusters", "--gmm-k"}};
 
-std::string optionName(const std::string& field) {
+// --name-with-dashes of a field.
+std::string longName(const std::string& field) {
   std::string name = "--" + field;
   for (char& c : name) c = c == '_' ? '-' : c;
+  return name;
+}
+
+std::string optionName(const std::string& field) {
   const auto alias = kAliases.find(field);
-  return alias == kAliases.end() ? name : name + "," + alias->second;
+  return alias == kAliases.end() ? longName(field) : longName(field) + "," + alias->second;
 }
 
 std::string typeName(const FieldInfo& field) {
@@ -64,7 +69,8 @@ void addParamsOptions(CLI::App* command, Params* params, const std::set<std::str
   command
       ->add_option_function<std::vector<std::string>>(
           "--set",
-          [params, except](const std::vector<std::string>& items) {
+          [command, params, except](const std::vector<std::string>& items) {
+            std::map<std::string, std::string> named;  // the values --set gave, as text
             for (const std::string& item : items) {
               const size_t eq = item.find('=');
               if (eq == std::string::npos) {
@@ -76,7 +82,24 @@ void addParamsOptions(CLI::App* command, Params* params, const std::set<std::str
                 throw CLI::ValidationError("--set: '" + name +
                                            "' is set by this command's own option, not --set");
               }
-              set(params, name, item.substr(eq + 1));
+              // Given twice with two values, one would win silently: refused, as an option
+              // given twice is. (The option's own value is in `params` by now: CLI11 runs the
+              // callbacks in the order the options were added, --set last.)
+              Params given = *params;
+              set(&given, name, item.substr(eq + 1));
+              const std::string value = toText(paramValue(given, name));
+              const CLI::Option* own = command->get_option_no_throw(longName(name));
+              const bool differs = value != toText(paramValue(*params, name));
+              if (own != nullptr && own->count() > 0 && differs) {
+                throw CLI::ValidationError("--set: '" + name + "' is also given by " +
+                                           longName(name) + ", another value: give it once");
+              }
+              const auto [earlier, first] = named.emplace(name, value);
+              if (!first && earlier->second != value) {
+                throw CLI::ValidationError("--set: '" + name +
+                                           "' is given twice, two values: give it once");
+              }
+              *params = given;
             }
           },
           "Set any parameter by its name: --set name=value (repeatable)")

@@ -42,6 +42,12 @@ TEST(Options, BadCliOptionsExitWithOneLine) {
       {segment + "--set seed=-1", "seed"},
       {segment + "--set nothing=1", "nothing"},
       {segment + "--set lambda", "name=value"},
+      // Two values, by its option and by --set or by --set twice: neither wins silently (the
+      // same value twice is fine: Options.EveryParameterIsSetByNameOrByItsOption).
+      {segment + "--method dense --set method=paper", "method"},
+      {segment + "--static --set static_camera=false", "static_camera"},
+      {segment + "--set lambda=3 --set lambda=4", "lambda"},
+      {"bench " + (dir / "clip") + " --lk-window 5 --set lk_window=7", "lk_window"},
       {"synth -o " + (dir / "s") + " --size -5x10", "--size"},
       {"synth -o " + (dir / "s") + " --size 0x0", "size"},
       {"synth -o " + (dir / "s") + " --frames 0", "frames"},
