@@ -8,6 +8,7 @@ PACKAGES=(
   libopencv-dev libopencv-contrib-dev   # images, video I/O, pyramids, Lucas-Kanade, MOG2
   libavformat-dev libavcodec-dev libswscale-dev libavutil-dev  # video decoding (src/io/)
   zlib1g-dev                            # PNG chunks checked before libpng sees them (src/io/)
+  libjpeg-dev libpng-dev                # frames decoded with their warnings caught (src/io/)
   ffmpeg                                # the tests make damaged and size-changing videos
   libcli11-dev                          # command-line parsing
   nlohmann-json3-dev                    # --stats / --json output

@@ -13,6 +13,8 @@
 #include <opencv2/videoio.hpp>
 
 #include "core/text.h"
+#include "io/jpeg_file.h"
+#include "io/png_file.h"
 
 namespace movseg {
 namespace fs = std::filesystem;
@@ -215,69 +217,101 @@ std::vector<std::string> listImages(const std::string& folder) {
 
 namespace {
 
-// A JPEG file (it starts with the start-of-image marker FF D8 FF) whose last bytes hold no
-// end-of-image marker (FF D9). In the compressed data a byte FF is only ever followed by 00 or a
-// restart marker (D0-D7), so a file cut anywhere in it ends without FF D9; a few bytes of
-// padding after the marker, which some encoders write, are allowed.
-bool isTruncatedJpeg(const std::string& path) {
-  constexpr std::streamoff kTail = 16;
-  std::ifstream file(path, std::ios::binary | std::ios::ate);
-  const std::streamoff size = file ? static_cast<std::streamoff>(file.tellg()) : 0;
-  if (size < 4) return false;
-  unsigned char head[3] = {};
-  file.seekg(0);
-  file.read(reinterpret_cast<char*>(head), 3);
-  if (head[0] != 0xFF || head[1] != 0xD8 || head[2] != 0xFF) return false;
-  const std::streamoff tail_size = std::min(size, kTail);
-  unsigned char tail[kTail] = {};
-  file.seekg(size - tail_size);
-  file.read(reinterpret_cast<char*>(tail), tail_size);
-  if (!file) return false;
-  for (std::streamoff i = 0; i + 1 < tail_size; ++i) {
-    if (tail[i] == 0xFF && tail[i + 1] == 0xD9) return false;
-  }
-  return true;
-}
-
 std::uint32_t bigEndian32(const unsigned char* bytes) {
   return std::uint32_t{bytes[0]} << 24 | std::uint32_t{bytes[1]} << 16 |
          std::uint32_t{bytes[2]} << 8 | bytes[3];
 }
 
+// The bytes of a PNG image's rows once inflated (a filter byte and the packed pixels per row),
+// each of Adam7's seven passes in turn when `interlaced`.
+std::uint64_t inflatedSize(std::uint64_t width, std::uint64_t height, unsigned bits_per_pixel,
+                           bool interlaced) {
+  const auto rows = [&](std::uint64_t w, std::uint64_t h) -> std::uint64_t {
+    return w == 0 || h == 0 ? 0 : h * (1 + (w * bits_per_pixel + 7) / 8);
+  };
+  if (!interlaced) return rows(width, height);
+  constexpr int kX[7] = {0, 4, 0, 2, 0, 1, 0}, kY[7] = {0, 0, 4, 0, 2, 0, 1};
+  constexpr int kStepX[7] = {8, 8, 4, 4, 2, 2, 1}, kStepY[7] = {8, 8, 8, 4, 4, 2, 2};
+  std::uint64_t size = 0;
+  for (int pass = 0; pass < 7; ++pass) {
+    const auto across = [](std::uint64_t n, int start, int step) -> std::uint64_t {
+      return n > static_cast<std::uint64_t>(start) ? (n - start + step - 1) / step : 0;
+    };
+    size += rows(across(width, kX[pass], kStepX[pass]), across(height, kY[pass], kStepY[pass]));
+  }
+  return size;
+}
+
+// Bits per pixel of a PNG colour type (0 grey, 2 RGB, 3 palette, 4 grey and alpha, 6 RGBA) at
+// `depth` bits a sample; 0 for a type that does not exist.
+unsigned bitsPerPixel(unsigned colour_type, unsigned depth) {
+  switch (colour_type) {
+    case 0: case 3: return depth;
+    case 2: return 3 * depth;
+    case 4: return 2 * depth;
+    case 6: return 4 * depth;
+    default: return 0;
+  }
+}
+
+// Whether the IDAT chunks' data (`parts`) inflate to at least `expected` bytes: libpng stops
+// with "Not enough image data" otherwise, printed on stderr.
+bool inflatesTo(const std::vector<std::pair<const uchar*, std::uint32_t>>& parts,
+                std::uint64_t expected) {
+  z_stream stream{};
+  if (inflateInit(&stream) != Z_OK) return false;
+  unsigned char scratch[1 << 15];
+  std::uint64_t produced = 0;
+  int status = Z_OK;
+  for (const auto& [data, length] : parts) {
+    stream.next_in = const_cast<uchar*>(data);
+    stream.avail_in = length;
+    while (status == Z_OK && stream.avail_in > 0) {
+      stream.next_out = scratch;
+      stream.avail_out = sizeof scratch;
+      status = inflate(&stream, Z_NO_FLUSH);
+      produced += sizeof scratch - stream.avail_out;
+      if (status == Z_BUF_ERROR) status = Z_OK;  // no progress with this chunk: the next one
+      if (produced >= expected) break;
+    }
+    if (status != Z_OK || produced >= expected) break;
+  }
+  inflateEnd(&stream);
+  return produced >= expected;
+}
+
 // A PNG file (it starts with the PNG signature) that libpng would refuse: its chunks do not run
 // whole up to IEND (a file cut short), a critical chunk's CRC does not match (libpng only warns
-// of an ancillary one's, and decodes the image), or the header's size is
-// beyond libpng's default limits (1,000,000 pixels a side, which OpenCV keeps). libpng prints
-// each such error on stderr before OpenCV sees it, and the CLI's errors are one line.
-bool isDamagedPng(const std::string& path) {
-  static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+// of an ancillary one's, and decodes the image), the header's size is beyond libpng's default
+// limits (1,000,000 pixels a side, which OpenCV keeps), or its image data inflates to fewer
+// bytes than its rows need (a writer that stopped early, the file then closed properly). libpng
+// prints each such error on stderr before OpenCV sees it, and the CLI's errors are one line.
+bool isDamagedPng(const std::vector<uchar>& file) {
   constexpr std::uint32_t kMaxSide = 1000000;
-  std::ifstream file(path, std::ios::binary | std::ios::ate);
-  const std::streamoff size = file ? static_cast<std::streamoff>(file.tellg()) : 0;
-  unsigned char head[8] = {};
-  file.seekg(0);
-  file.read(reinterpret_cast<char*>(head), 8);
-  if (!file || !std::equal(kSignature, kSignature + 8, head)) return false;  // not a PNG: read no more
-  std::vector<unsigned char> bytes(static_cast<size_t>(size - 8));  // the chunks
-  file.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  if (!file) return true;
-  size_t at = 0;
-  for (bool first = true;; first = false) {
-    if (bytes.size() - at < 12) return true;  // a chunk's length, type and CRC at least
-    const std::uint32_t length = bigEndian32(&bytes[at]);
-    if (length > bytes.size() - at - 12) return true;
-    const unsigned char* type = &bytes[at + 4];
+  if (!isPng(file)) return false;
+  std::uint64_t expected = 0;
+  std::vector<std::pair<const uchar*, std::uint32_t>> image_data;  // the IDAT chunks' data
+  for (size_t at = 8;; ) {
+    if (file.size() - at < 12) return true;  // a chunk's length, type and CRC at least
+    const std::uint32_t length = bigEndian32(&file[at]);
+    if (length > file.size() - at - 12) return true;
+    const unsigned char* type = &file[at + 4];
     const bool critical = (type[0] & 0x20) == 0;  // an upper-case first letter: IHDR, IDAT, ...
     if (critical && crc32(crc32(0L, Z_NULL, 0), type, 4 + length) != bigEndian32(type + 4 + length)) {
       return true;
     }
     const std::string name(type, type + 4);
-    if (first) {
+    const unsigned char* data = type + 4;
+    if (at == 8) {
       if (name != "IHDR" || length != 13) return true;
-      const std::uint32_t width = bigEndian32(type + 4), height = bigEndian32(type + 8);
+      const std::uint32_t width = bigEndian32(data), height = bigEndian32(data + 4);
       if (width == 0 || height == 0 || width > kMaxSide || height > kMaxSide) return true;
+      const unsigned bits = bitsPerPixel(data[9], data[8]);
+      if (bits == 0) return true;
+      expected = inflatedSize(width, height, bits, data[12] == 1);
     }
-    if (name == "IEND") return false;
+    if (name == "IDAT") image_data.emplace_back(data, length);
+    if (name == "IEND") return !inflatesTo(image_data, expected);
     at += 12 + length;
   }
 }
@@ -288,9 +322,26 @@ cv::Mat decodeImage(const std::string& path, int flags) {
   // Only a regular file: a FIFO or a device would block the read, or never end.
   std::error_code error;
   if (!fs::is_regular_file(path, error)) return cv::Mat();
-  if (isTruncatedJpeg(path) || isDamagedPng(path)) return cv::Mat();
+  std::ifstream file(path, std::ios::binary | std::ios::ate);
+  const std::streamoff size = file ? static_cast<std::streamoff>(file.tellg()) : 0;
+  std::vector<uchar> bytes(static_cast<size_t>(std::max<std::streamoff>(size, 0)));
+  file.seekg(0);
+  file.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  if (!file || bytes.empty()) return cv::Mat();
+  if (isJpeg(bytes)) {
+    // A frame (read unchanged) is decoded here; any other use is checked here and decoded below.
+    JpegRead jpeg = readJpeg(bytes, flags == cv::IMREAD_UNCHANGED);
+    if (jpeg.damaged) return cv::Mat();
+    if (!jpeg.image.empty()) return jpeg.image;
+  }
+  if (isPng(bytes) && flags == cv::IMREAD_UNCHANGED) {  // a frame: decoded here when it can be
+    PngRead png = readPng(bytes);
+    if (png.damaged) return cv::Mat();
+    if (!png.image.empty()) return png.image;
+  }
+  if (isDamagedPng(bytes)) return cv::Mat();
   try {
-    return cv::imread(path, flags);
+    return cv::imdecode(bytes, flags);
   } catch (const cv::Exception&) {
     return cv::Mat();
   }

@@ -55,12 +55,12 @@ bool inNumberOrder(const std::string& a, const std::string& b);
 // `._00002.png`, are not frames), in number order (inNumberOrder).
 std::vector<std::string> listImages(const std::string& folder);
 
-// cv::imread, but an empty Mat for every file it cannot decode: OpenCV throws instead when a
-// header claims a size beyond its limits, and libjpeg decodes a JPEG cut short (an interrupted
-// copy or download) with its missing rows grey and a warning on stderr, so such a file, which
-// does not end with the end-of-image marker, is not decoded; nor is a PNG whose chunks are cut
-// short or corrupt, of which libpng would print its error on stderr; nor anything but a regular
-// file (a FIFO would block).
+// cv::imread, but an empty Mat for every file it cannot decode, and nothing printed: OpenCV
+// throws instead when a header claims a size beyond its limits; a damaged JPEG (data cut short
+// by an interrupted copy, a bad Huffman code), which libjpeg decodes with a warning on stderr
+// and whatever the damage leaves in its rows, is not decoded (io/jpeg_file.h, which decodes the
+// JPEG frames read unchanged); nor is a PNG whose chunks are cut short or corrupt, of which
+// libpng would print its error on stderr; nor anything but a regular file (a FIFO would block).
 cv::Mat decodeImage(const std::string& path, int flags);
 
 }  // namespace movseg

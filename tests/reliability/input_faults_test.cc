@@ -261,6 +261,23 @@ TEST(InputFaults, ATruncatedJpegFrameIsACorruptImage) {
   fs::rename(third + ".padded", third);
   EXPECT_EQ(test::runCli("segment " + dir / "frames" + " -o " + dir / "again -q").exit_code, 0);
   EXPECT_TRUE(fs::exists(dir / "again/00003.png"));
+
+  // Damaged inside, whole at its ends (200 bytes of its entropy-coded data overwritten, the
+  // end-of-image marker intact): libjpeg decodes it with "Corrupt JPEG data: bad Huffman code"
+  // on stderr and garbage in its rows, which cv::imread passed on as a frame. A corrupt image
+  // too, in one line, for a frame and for an --ignore image alike.
+  std::string damaged = whole;
+  for (size_t i = whole.size() / 2; i < whole.size() / 2 + 200; ++i) {
+    damaged[i] = static_cast<char>(i * 37);
+  }
+  std::ofstream(third, std::ios::binary | std::ios::trunc) << damaged;
+  const test::CommandResult frame =
+      test::runCli("segment " + dir / "frames" + " -o " + dir / "damaged");
+  test::expectOneLineError(frame, "cannot decode image '" + third + "'", test::kExitRunFailed);
+  EXPECT_FALSE(fs::exists(dir / "damaged/00002.png"));
+  const test::CommandResult region = test::runCli("segment " + dir / "frames" + " -o " +
+                                                  dir / "ignoring --ignore " + third);
+  test::expectOneLineError(region, "--ignore: cannot decode image", test::kExitRunFailed);
 }
 
 // A signal while the stream is still being opened (a server that never answers, no timeout) is
@@ -369,8 +386,9 @@ TEST(InputFaults, AVideoPipedToStdinIsSegmented) {
   EXPECT_TRUE(fs::exists(dir / "out/00005.png"));
 }
 
-// A PNG frame cut short, with a corrupt chunk or with a header beyond libpng's limits is a
-// corrupt image in one line: libpng's own error would be a second line on stderr.
+// A PNG frame cut short, with a corrupt chunk, with a header beyond libpng's limits or with less
+// image data than its header's rows need is a corrupt image in one line: libpng's own error
+// would be a second line on stderr.
 TEST(InputFaults, ADamagedPngFrameIsACorruptImageInOneLine) {
   const test::TempDir dir;
   std::vector<uchar> png;
@@ -378,12 +396,23 @@ TEST(InputFaults, ADamagedPngFrameIsACorruptImageInOneLine) {
   const std::string whole(png.begin(), png.end());
   std::string corrupt = whole;
   corrupt[corrupt.size() / 2] = static_cast<char>(~corrupt[corrupt.size() / 2]);  // in IDAT
-  std::string huge = whole;  // IHDR's width (bytes 16-19) 2^31 - 1 and its CRC (29-32) made good
-  huge.replace(16, 4, "\x7f\xff\xff\xff");
-  const uLong crc = crc32(crc32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(&huge[12]), 17);
-  for (int i = 0; i < 4; ++i) huge[static_cast<size_t>(29 + i)] = static_cast<char>(crc >> (24 - 8 * i));
-  const std::pair<const char*, std::string> cases[] = {
-      {"cut-short", whole.substr(0, whole.size() / 3)}, {"corrupt", corrupt}, {"huge", huge}};
+  // IHDR's width (bytes 16-19) or height (20-23) replaced and its CRC (29-32) made good.
+  const auto withHeader = [&whole](size_t at, const char* value) {
+    std::string file = whole;
+    file.replace(at, 4, value, 4);
+    const uLong crc = crc32(crc32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(&file[12]), 17);
+    for (int i = 0; i < 4; ++i) {
+      file[static_cast<size_t>(29 + i)] = static_cast<char>(crc >> (24 - 8 * i));
+    }
+    return file;
+  };
+  const std::string huge = withHeader(16, "\x7f\xff\xff\xff");  // 2^31 - 1 wide
+  // 80 rows said, 72 in the data: every chunk whole and good, but libpng runs out of image data.
+  const std::string short_data = withHeader(20, "\x00\x00\x00\x50");
+  const std::pair<const char*, std::string> cases[] = {{"cut-short", whole.substr(0, whole.size() / 3)},
+                                                       {"corrupt", corrupt},
+                                                       {"huge", huge},
+                                                       {"short-data", short_data}};
   for (const auto& [name, bytes] : cases) {
     SCOPED_TRACE(name);
     const std::string frames = dir / name;
