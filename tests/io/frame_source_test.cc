@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "test_support.h"
 
@@ -37,6 +38,37 @@ TEST(FrameOrder, AFolderOfUnpaddedNamesIsReadInNumberOrder) {
   cv::Mat frame;
   while (source->read(&frame)) widths.push_back(frame.cols);
   EXPECT_EQ(widths, (std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}));
+}
+
+// decodeImage decodes JPEG and PNG frames itself (io/jpeg_file.h, io/png_file.h) and leaves other
+// formats to OpenCV: every one gives cv::imread's pixels, type and size.
+TEST(FrameFiles, DecodeAsImreadDoesInEveryFormat) {
+  const test::TempDir dir;
+  cv::Mat colour(37, 53, CV_8UC3);
+  cv::randu(colour, 0, 256);
+  cv::Mat grey, with_alpha, deep;
+  cv::extractChannel(colour, grey, 0);
+  cv::cvtColor(colour, with_alpha, cv::COLOR_BGR2BGRA);
+  colour.convertTo(deep, CV_16UC3, 257);
+  const std::pair<std::string, cv::Mat> files[] = {
+      {"colour.png", colour}, {"grey.png", grey},   {"alpha.png", with_alpha},
+      {"deep.png", deep},     {"colour.jpg", colour}, {"grey.jpg", grey},
+      {"colour.bmp", colour}};
+  for (const auto& [name, image] : files) {
+    ASSERT_TRUE(cv::imwrite(dir / name, image)) << name;
+  }
+  ASSERT_TRUE(cv::imwrite(dir / "progressive.jpg", colour, {cv::IMWRITE_JPEG_PROGRESSIVE, 1}));
+  ASSERT_TRUE(cv::imwrite(dir / "bilevel.png", grey > 128, {cv::IMWRITE_PNG_BILEVEL, 1}));
+  for (const std::string& path : listImages(dir.path())) {
+    SCOPED_TRACE(path);
+    for (const int flags : {cv::IMREAD_UNCHANGED, cv::IMREAD_GRAYSCALE, cv::IMREAD_COLOR}) {
+      const cv::Mat ours = decodeImage(path, flags), theirs = cv::imread(path, flags);
+      ASSERT_FALSE(ours.empty()) << flags;
+      EXPECT_EQ(ours.size(), theirs.size()) << flags;
+      ASSERT_EQ(ours.type(), theirs.type()) << flags;
+      EXPECT_EQ(cv::norm(ours, theirs, cv::NORM_INF), 0) << flags;
+    }
+  }
 }
 
 }  // namespace
