@@ -273,8 +273,21 @@ void denseFlowClip(benchmark::State& state, const Clip& clip) {
   }
 }
 
-// BM_Process/<clip>/<method> for every method on each clip that could be read, and
-// BM_DenseFlow/<clip>/<implementation> on those at 320x240.
+// Decoding a frame file as the CLI reads it (decodeImage: libjpeg-turbo directly, its warnings
+// caught) beside cv::imread, on DAVIS dog's first 12 JPEG frames (854x480): the reading thread
+// of `segment --threads 2` decodes, and its time bounds one stream's speed-up.
+void decodeFrames(benchmark::State& state, const std::vector<std::string>& files, bool ours) {
+  size_t i = 0;
+  for (auto _ : state) {
+    const std::string& file = files[i++ % files.size()];
+    cv::Mat frame =
+        ours ? decodeImage(file, cv::IMREAD_UNCHANGED) : cv::imread(file, cv::IMREAD_UNCHANGED);
+    benchmark::DoNotOptimize(frame.data);
+  }
+}
+
+// BM_Process/<clip>/<method> for every method on each clip that could be read,
+// BM_DenseFlow/<clip>/<implementation> on those at 320x240, and BM_DecodeFrame/davis-dog/<reader>.
 void registerPipelines() {
   std::vector<Clip> clips = {synthClip({320, 240}), synthClip({640, 480})};
   for (const cv::Size size : {cv::Size(320, 240), cv::Size()}) {
@@ -293,6 +306,17 @@ void registerPipelines() {
                                    denseFlowClip<DenseFlow>(state, clip);
                                  })
         ->Unit(benchmark::kMillisecond);
+  }
+  const std::string dog = davisRoot() + "/dog/frames";
+  if (std::filesystem::is_directory(dog)) {
+    std::vector<std::string> files = listImages(dog);
+    files.resize(std::min<size_t>(files.size(), 12));
+    for (const bool ours : {true, false}) {
+      benchmark::RegisterBenchmark(
+          (std::string("BM_DecodeFrame/davis-dog/") + (ours ? "movseg" : "imread")).c_str(),
+          [files, ours](benchmark::State& state) { decodeFrames(state, files, ours); })
+          ->Unit(benchmark::kMillisecond);
+    }
   }
   for (const Clip& clip : clips) {
     for (const std::string& method : enumNames<Method>()) {
