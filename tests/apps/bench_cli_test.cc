@@ -28,6 +28,18 @@ TEST(BenchCli, EveryMethodKeepsItsAccuracyOnSyntheticVideo) {
 
   std::ifstream in(dir / "bench.json");
   const nlohmann::json report = nlohmann::json::parse(in);
+  // The machine, as README says the JSON holds it: the CPU's model name from /proc/cpuinfo, the
+  // one the printed table's first line names.
+  std::string model = "unknown CPU";  // where /proc/cpuinfo names none (some ARM kernels)
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  for (std::string line; std::getline(cpuinfo, line);) {
+    if (line.rfind("model name", 0) == 0) {
+      model = line.substr(line.find(": ") + 2);
+      break;
+    }
+  }
+  EXPECT_EQ(report.at("cpu"), model);
+  EXPECT_NE(bench.output.find("movseg bench on " + model + ","), std::string::npos);
   // J and F of each method on this clip (measured 2026-11-27; a baseline that marks nothing or
   // everything falls far outside).
   const std::map<std::string, std::pair<double, double>> measured{
