@@ -271,7 +271,10 @@ bool inflatesTo(const std::vector<std::pair<const uchar*, std::uint32_t>>& parts
       stream.avail_out = sizeof scratch;
       status = inflate(&stream, Z_NO_FLUSH);
       produced += sizeof scratch - stream.avail_out;
-      if (status == Z_BUF_ERROR) status = Z_OK;  // no progress with this chunk: the next one
+      if (status == Z_BUF_ERROR) {  // no progress with this chunk's data: on to the next one
+        status = Z_OK;
+        break;
+      }
       if (produced >= expected) break;
     }
     if (status != Z_OK || produced >= expected) break;
