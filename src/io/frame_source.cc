@@ -4,6 +4,7 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <stdexcept>
 #include <vector>
 
@@ -319,6 +320,22 @@ bool isDamagedPng(const std::vector<uchar>& file) {
   }
 }
 
+// Whether `bytes` start as one of the formats isImageFile() names does: PNG, JPEG, BMP, TIFF,
+// PPM/PGM (and PBM), WebP. OpenCV picks its decoder by the bytes, not the name, and would hand
+// anything else to whichever decoder claims it: its DICOM reader, for a file with "DICM" at byte
+// 128, aborted the process on an assertion of GDCM's (found by fuzz/readers_fuzz).
+bool hasImageSignature(const std::vector<uchar>& bytes) {
+  const auto starts = [&bytes](std::initializer_list<uchar> head, size_t at = 0) {
+    return bytes.size() >= at + head.size() &&
+           std::equal(head.begin(), head.end(), bytes.begin() + static_cast<std::ptrdiff_t>(at));
+  };
+  const bool netpbm = bytes.size() >= 3 && bytes[0] == 'P' && bytes[1] >= '1' &&
+                      bytes[1] <= '6' && std::isspace(bytes[2]) != 0;
+  return isPng(bytes) || isJpeg(bytes) || starts({'B', 'M'}) || starts({'I', 'I', 42, 0}) ||
+         starts({'M', 'M', 0, 42}) || netpbm ||
+         (starts({'R', 'I', 'F', 'F'}) && starts({'W', 'E', 'B', 'P'}, 8));
+}
+
 }  // namespace
 
 cv::Mat decodeImage(const std::string& path, int flags) {
@@ -330,7 +347,7 @@ cv::Mat decodeImage(const std::string& path, int flags) {
   std::vector<uchar> bytes(static_cast<size_t>(std::max<std::streamoff>(size, 0)));
   file.seekg(0);
   file.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  if (!file || bytes.empty()) return cv::Mat();
+  if (!file || !hasImageSignature(bytes)) return cv::Mat();
   if (isJpeg(bytes)) {
     // A frame (read unchanged) is decoded here; any other use is checked here and decoded below.
     JpegRead jpeg = readJpeg(bytes, flags == cv::IMREAD_UNCHANGED);

@@ -60,7 +60,9 @@ std::vector<std::string> listImages(const std::string& folder);
 // by an interrupted copy, a bad Huffman code), which libjpeg decodes with a warning on stderr
 // and whatever the damage leaves in its rows, is not decoded (io/jpeg_file.h, which decodes the
 // JPEG frames read unchanged); nor is a PNG whose chunks are cut short or corrupt, of which
-// libpng would print its error on stderr; nor anything but a regular file (a FIFO would block).
+// libpng would print its error on stderr; nor a file that does not begin as one of the formats
+// listImages() reads (OpenCV would pick a decoder by its bytes: DICOM's aborted the process);
+// nor anything but a regular file (a FIFO would block).
 cv::Mat decodeImage(const std::string& path, int flags);
 
 }  // namespace movseg
