@@ -92,7 +92,7 @@ void addParamsOptions(CLI::App* command, Params* params, const std::set<std::str
               const bool differs = value != toText(paramValue(*params, name));
               if (own != nullptr && own->count() > 0 && differs) {
                 throw CLI::ValidationError("--set: '" + name + "' is also given by " +
-                                           longName(name) + ", another value: give it once");
+                                           optionName(name) + ", another value: give it once");
               }
               const auto [earlier, first] = named.emplace(name, value);
               if (!first && earlier->second != value) {

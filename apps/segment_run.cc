@@ -169,12 +169,15 @@ nlohmann::json runIdentity(const SegmentOptions& options) {
   return {{"input", options.input}, {"settings", settings}};
 }
 
-// An output folder holds the outputs of one run, described by its manifest. A folder holding
-// another run's (a manifest, or numbered masks without one) is refused unless `overwrite`, which
-// removes that run's masks, debug pictures and overlay frames first: runs never mix silently.
+// A folder's path, absolute, without a trailing separator (out/ and out are one folder).
+fs::path folderPath(const fs::path& path) {
+  const fs::path normal = fs::absolute(path).lexically_normal();
+  return normal.has_filename() ? normal : normal.parent_path();
+}
+
 // The nearest of `path` and its parents that exists.
 fs::path existingAncestor(const fs::path& path) {
-  fs::path at = fs::absolute(path).lexically_normal();
+  fs::path at = folderPath(path);
   std::error_code error;
   while (at.has_relative_path() && !fs::exists(at, error)) at = at.parent_path();
   return at;
@@ -184,14 +187,24 @@ fs::path existingAncestor(const fs::path& path) {
 // long as they are empty.
 void removeEmptyFoldersUpTo(const fs::path& path, const fs::path& ancestor) {
   std::error_code error;
-  for (fs::path at = fs::absolute(path).lexically_normal(); at != ancestor && at.has_relative_path();
+  for (fs::path at = folderPath(path); at != ancestor && at.has_relative_path();
        at = at.parent_path()) {
     if (!fs::remove(at, error)) return;  // not empty, or not there
   }
 }
 
+// The files a run writes beside its masks, tried before the run replaces anything: an earlier
+// run's outputs are removed (--overwrite) only once this run can write its own. The overlay
+// video itself is opened at the first frame, when its size is known.
+void checkRunFiles(const SegmentOptions& options) {
+  if (!options.stats_file.empty()) checkOutputFile(options.stats_file);
+  if (isVideoPath(options.overlay)) checkOutputFile(options.overlay);
+}
+
+// An output folder holds the outputs of one run, described by its manifest. A folder holding
+// another run's (a manifest, or numbered masks without one) is refused unless `overwrite`, which
+// removes that run's masks, debug pictures and overlay frames first: runs never mix silently.
 void claimOutputFolder(const SegmentOptions& options) {
-  makeOutputFolder(options.output_dir);
   const fs::path dir(options.output_dir);
   const fs::path manifest = dir / kManifestName;
   std::vector<std::string> previous = frameFilesIn(dir.string());
@@ -281,8 +294,6 @@ class OverlayWriter {
     fps_ = std::isfinite(fps) && fps > 0 && fps <= 1000 ? fps : 25.0;
     if (target_.empty()) return;
     if (isVideoPath(target_)) {
-      // Tried now, before any mask is written: the video itself opens at the first frame.
-      checkOutputFile(target_);
       temporary_ = temporaryPath(target_, /*keep_extension=*/true);
     } else {
       makeOutputFolder(target_);
@@ -676,9 +687,11 @@ SegmentSummary runSegmentation(const SegmentOptions& options) {
   }
   const SourceReport opened = source->report();
   const fs::path existing = existingAncestor(options.output_dir);
-  claimOutputFolder(options);
   std::optional<RunOutputs> opened_outputs;
   try {
+    makeOutputFolder(options.output_dir);
+    checkRunFiles(options);
+    claimOutputFolder(options);
     opened_outputs.emplace(options, opened.fps);
   } catch (const std::exception&) {
     // An output that cannot be written is refused before any work: nothing is left behind,

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
+#include <new>
 #include <stdexcept>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include <opencv2/videoio.hpp>
 
 #include "core/text.h"
+#include "io/image_limits.h"
 #include "io/jpeg_file.h"
 #include "io/png_file.h"
 
@@ -185,7 +187,7 @@ bool inNumberOrder(const std::string& a, const std::string& b) {
   size_t i = 0, j = 0;
   while (i < a.size() && j < b.size()) {
     if (!digit(a[i]) || !digit(b[j])) {
-      if (a[i] != b[j]) return a[i] < b[j];
+      if (a[i] != b[j]) return static_cast<unsigned char>(a[i]) < static_cast<unsigned char>(b[j]);
       ++i, ++j;
       continue;
     }
@@ -310,6 +312,9 @@ bool isDamagedPng(const std::vector<uchar>& file) {
       if (name != "IHDR" || length != 13) return true;
       const std::uint32_t width = bigEndian32(data), height = bigEndian32(data + 4);
       if (width == 0 || height == 0 || width > kMaxSide || height > kMaxSide) return true;
+      // Beyond OpenCV's limits imread refuses it anyway; not inflated (a few MB could take
+      // seconds) to find out.
+      if (!withinImageLimits(width, height)) return true;
       const unsigned bits = bitsPerPixel(data[9], data[8]);
       if (bits == 0) return true;
       expected = inflatedSize(width, height, bits, data[12] == 1);
@@ -336,18 +341,21 @@ bool hasImageSignature(const std::vector<uchar>& bytes) {
          (starts({'R', 'I', 'F', 'F'}) && starts({'W', 'E', 'B', 'P'}, 8));
 }
 
-}  // namespace
-
-cv::Mat decodeImage(const std::string& path, int flags) {
-  // Only a regular file: a FIFO or a device would block the read, or never end.
-  std::error_code error;
-  if (!fs::is_regular_file(path, error)) return cv::Mat();
+// decodeImage's work on a regular file: its signature read first (a large file that is no
+// image is not read whole), then the rest.
+cv::Mat decodeFile(const std::string& path, int flags) {
   std::ifstream file(path, std::ios::binary | std::ios::ate);
   const std::streamoff size = file ? static_cast<std::streamoff>(file.tellg()) : 0;
-  std::vector<uchar> bytes(static_cast<size_t>(std::max<std::streamoff>(size, 0)));
+  constexpr std::streamoff kHead = 16;
+  std::vector<uchar> bytes(static_cast<size_t>(std::min(std::max<std::streamoff>(size, 0), kHead)));
   file.seekg(0);
   file.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
   if (!file || !hasImageSignature(bytes)) return cv::Mat();
+  const size_t head = bytes.size();
+  bytes.resize(static_cast<size_t>(size));
+  file.read(reinterpret_cast<char*>(bytes.data() + head),
+            static_cast<std::streamsize>(bytes.size() - head));
+  if (!file) return cv::Mat();
   if (isJpeg(bytes)) {
     // A frame (read unchanged) is decoded here; any other use is checked here and decoded below.
     JpegRead jpeg = readJpeg(bytes, flags == cv::IMREAD_UNCHANGED);
@@ -360,9 +368,20 @@ cv::Mat decodeImage(const std::string& path, int flags) {
     if (!png.image.empty()) return png.image;
   }
   if (isDamagedPng(bytes)) return cv::Mat();
+  return cv::imdecode(bytes, flags);
+}
+
+}  // namespace
+
+cv::Mat decodeImage(const std::string& path, int flags) {
+  // Only a regular file: a FIFO or a device would block the read, or never end.
+  std::error_code error;
+  if (!fs::is_regular_file(path, error)) return cv::Mat();
   try {
-    return cv::imdecode(bytes, flags);
-  } catch (const cv::Exception&) {
+    return decodeFile(path, flags);
+  } catch (const cv::Exception&) {  // a size within the limits that could not be allocated, ...
+    return cv::Mat();
+  } catch (const std::bad_alloc&) {
     return cv::Mat();
   }
 }

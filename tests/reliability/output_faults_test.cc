@@ -365,6 +365,20 @@ TEST_F(OutputFaults, UnwritableReportPathsFailBeforeTheWork) {
                                                  " --overlay " + dir_ / "missing/overlay.mkv");
   test::expectOneLineError(video, "missing/overlay.mkv", test::kExitRunFailed);
   EXPECT_FALSE(fs::exists(dir_ / "new"));
+  // The same with the stats file inside the new folder and a trailing separator: nothing left.
+  const test::CommandResult inside =
+      test::runCli("segment " + frames() + " -o " + dir_ / "new/out/" + " --stats " +
+                   dir_ / "new/out/stats.jsonl --overlay " + dir_ / "missing/overlay.mkv");
+  test::expectOneLineError(inside, "missing/overlay.mkv", test::kExitRunFailed);
+  EXPECT_FALSE(fs::exists(dir_ / "new"));
+  // With --overwrite, an earlier run's outputs stay when this run cannot write its own.
+  ASSERT_EQ(test::runCli("segment " + frames() + " -q -o " + dir_ / "earlier").exit_code, 0);
+  const auto earlier = test::filesIn(dir_ / "earlier");
+  ASSERT_FALSE(earlier.empty());
+  test::expectOneLineError(test::runCli("segment " + frames() + " -o " + dir_ / "earlier" +
+                                        " --overwrite --overlay " + dir_ / "missing/overlay.mkv"),
+                           "missing/overlay.mkv", test::kExitRunFailed);
+  EXPECT_EQ(test::filesIn(dir_ / "earlier"), earlier);
   for (const std::string& report : {dir_ / "a-folder", dir_ / "a-file/x.json"}) {
     SCOPED_TRACE(report);
     // eval prints its table, bench its table and progress, only once they have done the work.
