@@ -23,6 +23,7 @@ TEST(FrameOrder, DigitsCompareAsNumbers) {
   // Equal in value, different in name: ordered all the same (a strict weak order).
   EXPECT_NE(inNumberOrder("01.png", "1.png"), inNumberOrder("1.png", "01.png"));
   EXPECT_FALSE(inNumberOrder("7.png", "7.png"));
+  EXPECT_TRUE(inNumberOrder("9.png", "\xc3\xa9t\xc3\xa9.png"));  // UTF-8 after ASCII, as by name
 }
 
 // Frames named without padding (1.png ... 11.png) are read 1, 2, ..., 11, not 1, 10, 11, 2:
