@@ -169,14 +169,8 @@ nlohmann::json runIdentity(const SegmentOptions& options) {
   return {{"input", options.input}, {"settings", settings}};
 }
 
-// A folder's path, absolute, without a trailing separator (out/ and out are one folder).
-fs::path folderPath(const fs::path& path) {
-  const fs::path normal = fs::absolute(path).lexically_normal();
-  return normal.has_filename() ? normal : normal.parent_path();
-}
-
 // The nearest of `path` and its parents that exists.
-fs::path existingAncestor(const fs::path& path) {
+fs::path existingAncestor(const std::string& path) {
   fs::path at = folderPath(path);
   std::error_code error;
   while (at.has_relative_path() && !fs::exists(at, error)) at = at.parent_path();
@@ -185,7 +179,7 @@ fs::path existingAncestor(const fs::path& path) {
 
 // Removes `path` and its parents below `ancestor` (existingAncestor() before they were made), as
 // long as they are empty.
-void removeEmptyFoldersUpTo(const fs::path& path, const fs::path& ancestor) {
+void removeEmptyFoldersUpTo(const std::string& path, const fs::path& ancestor) {
   std::error_code error;
   for (fs::path at = folderPath(path); at != ancestor && at.has_relative_path();
        at = at.parent_path()) {

@@ -9,6 +9,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "io/atomic_write.h"
 #include "io/frame_source.h"
 
 namespace movseg {
@@ -242,11 +243,7 @@ std::string gtFormatName(GtFormat format) {
   return "";
 }
 
-std::string folderName(const std::string& folder) {
-  fs::path path = fs::absolute(folder).lexically_normal();
-  if (path.filename().empty()) path = path.parent_path();
-  return path.filename().string();
-}
+std::string folderName(const std::string& folder) { return folderPath(folder).filename().string(); }
 
 int frameNumber(const std::string& path) {
   const std::string stem = fs::path(path).stem().string();

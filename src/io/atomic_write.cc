@@ -186,6 +186,11 @@ void makeOutputFolder(const std::string& path) {
   }
 }
 
+fs::path folderPath(const std::string& path) {
+  const fs::path normal = fs::absolute(path).lexically_normal();
+  return normal.has_filename() ? normal : normal.parent_path();
+}
+
 std::string frameFileName(int index) {
   char name[32];
   std::snprintf(name, sizeof name, "%05d.png", index);

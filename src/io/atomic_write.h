@@ -6,6 +6,7 @@
 // renaming a file over it would replace the node itself, for everyone who uses it.
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,10 @@ void checkOutputFile(const std::string& path);
 // Creates the folder `path` and its parents. Throws std::runtime_error "cannot create output
 // folder ..." when it cannot (a file in the way, no permission).
 void makeOutputFolder(const std::string& path);
+
+// A folder's path, absolute and normal, without a trailing separator: "out/", "./out" and "out"
+// are one folder.
+std::filesystem::path folderPath(const std::string& path);
 
 // The name of frame `index`'s picture among a run's outputs (masks, synthetic frames): 00000.png,
 // 00001.png, ..., more digits from 100000 on.
